@@ -1,0 +1,202 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mpsfsi/core/detail/csr_builder.hpp"
+#include "mpsfsi/core/error.hpp"
+#include "mpsfsi/core/neighbor_list.hpp"
+#include "mpsfsi/core/parallel.hpp"
+#include "mpsfsi/core/types.hpp"
+
+namespace mpsfsi {
+
+// Fixed-radius neighbour search on a uniform grid of cells no smaller than the radius (the
+// default search). build() bins the source points by a counting sort and keeps a copy of them
+// in cell order, so a query streams through memory; query() lists, for every query point, the
+// source points within the radius (|r_j - r_i| <= radius, pairs at exactly the radius included).
+//
+// The grid covers the bounding box of the source points. A point far outside the others only
+// makes the cells larger (the cell count is capped near the point count), so results stay exact
+// and only speed degrades. One query at a time per object: the scratch buffers are members.
+template <int Dim, class Scalar = double>
+class CellListSearch {
+  static_assert(detail::is_supported_dim<Dim>, "mpsfsi::CellListSearch: Dim must be 2 or 3");
+
+ public:
+  static constexpr int dim = Dim;
+  using scalar_type = Scalar;
+  using vec_type = Vec<Dim, Scalar>;
+
+  explicit CellListSearch(Scalar radius) : radius_(radius) {
+    if (!(radius > 0) || !std::isfinite(radius))
+      detail::throw_invalid("CellListSearch", "search radius must be positive and finite, got " +
+                                                  std::to_string(radius));
+  }
+
+  Scalar radius() const { return radius_; }
+  std::size_t num_points() const { return sorted_position_.size(); }
+
+  // Bins the source points. Throws InvalidInput on a non-finite position (naming the index).
+  void build(const VecArray<Dim, Scalar>& points) {
+    const std::size_t n = points.size();
+    check_finite(points);
+    sorted_position_.resize(n);
+    order_.resize(n);
+    cell_of_.resize(n);
+    if (n == 0) {
+      cell_start_.assign(2, 0);
+      dims_.fill(1);
+      return;
+    }
+    choose_grid(points);
+    const auto& lo = lower_;
+    const Scalar inv_h = Scalar(1) / cell_size_;
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
+      std::int64_t lin = 0;
+      for (int k = Dim - 1; k >= 0; --k) {
+        auto c = static_cast<std::int64_t>(std::floor((points[i][k] - lo[k]) * inv_h));
+        c = std::clamp<std::int64_t>(c, 0, dims_[k] - 1);
+        lin = lin * dims_[k] + c;
+      }
+      cell_of_[static_cast<std::size_t>(i)] = lin;
+    }
+    // Counting sort by cell: cell_start_[c] .. cell_start_[c+1] are the points of cell c.
+    const std::int64_t cells = num_cells();
+    cell_start_.assign(static_cast<std::size_t>(cells) + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ++cell_start_[static_cast<std::size_t>(cell_of_[i]) + 1];
+    for (std::int64_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
+    fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) order_[fill_[static_cast<std::size_t>(cell_of_[i])]++] = static_cast<Index>(i);
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k)
+      sorted_position_[static_cast<std::size_t>(k)] = points[static_cast<std::size_t>(order_[k])];
+  }
+
+  // Neighbours among the source points of each query point (another particle set, e.g. fluid
+  // looking at solid). A query point is not excluded even if it coincides with a source point.
+  void query(const VecArray<Dim, Scalar>& queries, BasicNeighborList<Scalar>& out,
+             const QueryOptions& options = {}) const {
+    check_finite(queries);
+    run(queries, out, options, false);
+  }
+
+  // Neighbours of each source point among the source points, itself excluded. `points` must be
+  // the array given to build(), unchanged.
+  void self_query(const VecArray<Dim, Scalar>& points, BasicNeighborList<Scalar>& out,
+                  const QueryOptions& options = {}) const {
+    if (points.size() != num_points())
+      detail::throw_invalid("CellListSearch::self_query",
+                            "got " + std::to_string(points.size()) + " points but build() saw " +
+                                std::to_string(num_points()) + "; rebuild first");
+    run(points, out, options, true);
+  }
+
+  // Source indices in cell order: permuting a particle set by it (ParticleSet::permute) puts
+  // neighbours close together in memory. Valid after build().
+  const std::vector<Index>& cell_order() const { return order_; }
+
+  Scalar cell_size() const { return cell_size_; }
+  std::int64_t num_cells() const {
+    std::int64_t c = 1;
+    for (int k = 0; k < Dim; ++k) c *= dims_[k];
+    return c;
+  }
+
+ private:
+  static void check_finite(const VecArray<Dim, Scalar>& points) {
+    bool ok = true;
+    MPSFSI_OMP(parallel for reduction(&& : ok))
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(points.size()); ++i)
+      ok = ok && points[static_cast<std::size_t>(i)].allFinite();
+    if (ok) return;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (!points[i].allFinite())
+        detail::throw_invalid("CellListSearch", "position of point " + std::to_string(i) +
+                                                    " is not finite (NaN or inf)");
+  }
+
+  void choose_grid(const VecArray<Dim, Scalar>& points) {
+    vec_type lo = points[0], hi = points[0];
+    for (const auto& p : points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const vec_type extent = hi - lo;
+    if (!extent.allFinite())
+      detail::throw_invalid("CellListSearch", "the points span more than a double can hold");
+    // A margin over the radius keeps a pair at exactly the radius in adjacent cells despite the
+    // rounding of (x - lower) / h.
+    Scalar h = radius_ * Scalar(1 + 1e-6);
+    const double cap = 8.0 * static_cast<double>(points.size()) + 64.0;
+    auto cells_for = [&](Scalar hh) {
+      double c = 1;
+      for (int k = 0; k < Dim; ++k) c *= std::floor(static_cast<double>(extent[k] / hh)) + 1;
+      return c;
+    };
+    while (cells_for(h) > cap) h *= Scalar(1.5);
+    cell_size_ = h;
+    lower_ = lo;
+    for (int k = 0; k < Dim; ++k) dims_[k] = static_cast<std::int64_t>(std::floor(extent[k] / h)) + 1;
+  }
+
+  void run(const VecArray<Dim, Scalar>& queries, BasicNeighborList<Scalar>& out,
+           const QueryOptions& options, bool exclude_self) const {
+    const Scalar r2 = radius_ * radius_;
+    const Scalar inv_h = Scalar(1) / cell_size_;
+    if (num_points() == 0) {
+      out.offsets.assign(queries.size() + 1, 0);
+      out.indices.clear();
+      out.distances.clear();
+      return;
+    }
+    detail::build_csr(queries.size(), options, scratch_, out, [&](std::size_t i, auto&& push) {
+      const vec_type& x = queries[i];
+      std::array<std::int64_t, 3> c0{0, 0, 0}, c1{0, 0, 0};
+      for (int k = 0; k < Dim; ++k) {
+        const Scalar u = std::floor((x[k] - lower_[k]) * inv_h);
+        // Cells more than one away from the grid hold nothing within the radius.
+        if (u < Scalar(-1) || u > static_cast<Scalar>(dims_[k])) return;
+        const auto c = static_cast<std::int64_t>(u);
+        c0[k] = std::max<std::int64_t>(c - 1, 0);
+        c1[k] = std::min<std::int64_t>(c + 1, dims_[k] - 1);
+      }
+      // Rows along x are contiguous in the cell order: one run of sorted points per (y, z).
+      const std::int64_t z0 = (Dim == 3) ? c0[2] : 0, z1 = (Dim == 3) ? c1[2] : 0;
+      for (std::int64_t cz = z0; cz <= z1; ++cz) {
+        for (std::int64_t cy = c0[1]; cy <= c1[1]; ++cy) {
+          const std::int64_t row = (Dim == 3 ? cz * dims_[1] + cy : cy) * dims_[0];
+          const Index kb = cell_start_[static_cast<std::size_t>(row + c0[0])];
+          const Index ke = cell_start_[static_cast<std::size_t>(row + c1[0] + 1)];
+          for (Index k = kb; k < ke; ++k) {
+            const Scalar d2 = detail::squared_distance<Dim, Scalar>(x, sorted_position_[k]);
+            if (d2 <= r2) {
+              const Index j = order_[k];
+              if (!(exclude_self && static_cast<std::size_t>(j) == i)) push(j, d2);
+            }
+          }
+        }
+      }
+    });
+  }
+
+  Scalar radius_;
+  Scalar cell_size_ = 0;
+  vec_type lower_ = vec_type::Zero();
+  std::array<std::int64_t, Dim> dims_{};
+  std::vector<Index> cell_start_;
+  std::vector<Index> fill_;
+  std::vector<std::int64_t> cell_of_;
+  std::vector<Index> order_;
+  VecArray<Dim, Scalar> sorted_position_;
+  mutable detail::CsrScratch<Scalar> scratch_;
+};
+
+}  // namespace mpsfsi

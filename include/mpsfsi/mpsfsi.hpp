@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+// Umbrella header: everything public in mpsfsi.
+#include "mpsfsi/version.hpp"
+
+#include "mpsfsi/core/cell_list_search.hpp"
+#include "mpsfsi/core/error.hpp"
+#include "mpsfsi/core/kd_tree_search.hpp"
+#include "mpsfsi/core/neighbor_list.hpp"
+#include "mpsfsi/core/neighbor_search.hpp"
+#include "mpsfsi/core/parallel.hpp"
+#include "mpsfsi/core/particle_set.hpp"
+#include "mpsfsi/core/types.hpp"
+
+#include "mpsfsi/kernels/divergence.hpp"
+#include "mpsfsi/kernels/gradient.hpp"
+#include "mpsfsi/kernels/gradient_correction.hpp"
+#include "mpsfsi/kernels/laplacian.hpp"
+#include "mpsfsi/kernels/lattice_constants.hpp"
+#include "mpsfsi/kernels/number_density.hpp"
+#include "mpsfsi/kernels/weight.hpp"
+
+#include "mpsfsi/scenes/lattice.hpp"
