@@ -41,13 +41,13 @@ class CellListSearch {
   }
 
   Scalar radius() const { return radius_; }
-  std::size_t num_points() const { return sorted_position_.size(); }
+  std::size_t num_points() const { return order_.size(); }
 
   // Bins the source points. Throws InvalidInput on a non-finite position (naming the index).
   void build(const VecArray<Dim, Scalar>& points) {
     const std::size_t n = points.size();
     check_finite(points);
-    sorted_position_.resize(n);
+    for (auto& coordinate : sorted_) coordinate.resize(n);
     order_.resize(n);
     cell_of_.resize(n);
     if (n == 0) {
@@ -56,28 +56,7 @@ class CellListSearch {
       return;
     }
     choose_grid(points);
-    const auto& lo = lower_;
-    const Scalar inv_h = Scalar(1) / cell_size_;
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
-      std::int64_t lin = 0;
-      for (int k = Dim - 1; k >= 0; --k) {
-        auto c = static_cast<std::int64_t>(std::floor((points[i][k] - lo[k]) * inv_h));
-        c = std::clamp<std::int64_t>(c, 0, dims_[k] - 1);
-        lin = lin * dims_[k] + c;
-      }
-      cell_of_[static_cast<std::size_t>(i)] = lin;
-    }
-    // Counting sort by cell: cell_start_[c] .. cell_start_[c+1] are the points of cell c.
-    const std::int64_t cells = num_cells();
-    cell_start_.assign(static_cast<std::size_t>(cells) + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) ++cell_start_[static_cast<std::size_t>(cell_of_[i]) + 1];
-    for (std::int64_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
-    fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) order_[fill_[static_cast<std::size_t>(cell_of_[i])]++] = static_cast<Index>(i);
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k)
-      sorted_position_[static_cast<std::size_t>(k)] = points[static_cast<std::size_t>(order_[k])];
+    bin_points(points);
   }
 
   // Neighbours among the source points of each query point (another particle set, e.g. fluid
@@ -123,6 +102,60 @@ class CellListSearch {
                                                     " is not finite (NaN or inf)");
   }
 
+  // Cell of every point, then a stable parallel counting sort: thread t counts its block of
+  // points per cell, an exclusive scan in (cell, thread) order gives each thread its slots, and
+  // each thread scatters its block. The order equals that of a serial stable sort.
+  void bin_points(const VecArray<Dim, Scalar>& points) {
+    const std::size_t n = points.size();
+    const Scalar inv_h = Scalar(1) / cell_size_;
+    const std::int64_t cells = num_cells();
+    const int threads = parallel::max_threads();
+    histogram_.assign(static_cast<std::size_t>(threads) * static_cast<std::size_t>(cells), 0);
+    cell_start_.resize(static_cast<std::size_t>(cells) + 1);
+    int team = 1;
+    MPSFSI_OMP(parallel num_threads(threads)) {
+      const int t = parallel::thread_id();
+      const int nt = parallel::team_size();
+      MPSFSI_OMP(single) team = nt;
+      const std::size_t lo = detail::block_begin(n, t, nt), hi = detail::block_begin(n, t + 1, nt);
+      Index* count = histogram_.data() + static_cast<std::size_t>(t) * static_cast<std::size_t>(cells);
+      for (std::size_t i = lo; i < hi; ++i) {
+        std::int64_t lin = 0;
+        for (int k = Dim - 1; k >= 0; --k) {
+          auto c = static_cast<std::int64_t>(std::floor((points[i][k] - lower_[k]) * inv_h));
+          c = std::clamp<std::int64_t>(c, 0, dims_[k] - 1);
+          lin = lin * dims_[k] + c;
+        }
+        cell_of_[i] = lin;
+        ++count[lin];
+      }
+      MPSFSI_OMP(barrier)
+      MPSFSI_OMP(single) {
+        Index run = 0;
+        for (std::int64_t c = 0; c < cells; ++c) {
+          cell_start_[static_cast<std::size_t>(c)] = run;
+          for (int tt = 0; tt < team; ++tt) {
+            Index& slot = histogram_[static_cast<std::size_t>(tt) * static_cast<std::size_t>(cells) + static_cast<std::size_t>(c)];
+            const Index cnt = slot;
+            slot = run;
+            run += cnt;
+          }
+        }
+        cell_start_[static_cast<std::size_t>(cells)] = run;
+      }
+      for (std::size_t i = lo; i < hi; ++i) {
+        const Index k = count[cell_of_[i]]++;
+        order_[static_cast<std::size_t>(k)] = static_cast<Index>(i);
+      }
+      MPSFSI_OMP(barrier)
+      const std::size_t klo = detail::block_begin(n, t, nt), khi = detail::block_begin(n, t + 1, nt);
+      for (std::size_t k = klo; k < khi; ++k) {
+        const auto& p = points[static_cast<std::size_t>(order_[k])];
+        for (int d = 0; d < Dim; ++d) sorted_[static_cast<std::size_t>(d)][k] = p[d];
+      }
+    }
+  }
+
   void choose_grid(const VecArray<Dim, Scalar>& points) {
     vec_type lo = points[0], hi = points[0];
     for (const auto& p : points) {
@@ -135,7 +168,7 @@ class CellListSearch {
     // A margin over the radius keeps a pair at exactly the radius in adjacent cells despite the
     // rounding of (x - lower) / h.
     Scalar h = radius_ * Scalar(1 + 1e-6);
-    const double cap = 8.0 * static_cast<double>(points.size()) + 64.0;
+    const double cap = 2.0 * static_cast<double>(points.size()) + 64.0;
     auto cells_for = [&](Scalar hh) {
       double c = 1;
       for (int k = 0; k < Dim; ++k) c *= std::floor(static_cast<double>(extent[k] / hh)) + 1;
@@ -157,7 +190,8 @@ class CellListSearch {
       out.distances.clear();
       return;
     }
-    detail::build_csr(queries.size(), options, scratch_, out, [&](std::size_t i, auto&& push) {
+    const Index none = -1;
+    detail::build_csr(queries.size(), options, scratch_, out, [&](std::size_t i, detail::CsrSink<Scalar>& sink) {
       const vec_type& x = queries[i];
       std::array<std::int64_t, 3> c0{0, 0, 0}, c1{0, 0, 0};
       for (int k = 0; k < Dim; ++k) {
@@ -168,19 +202,29 @@ class CellListSearch {
         c0[k] = std::max<std::int64_t>(c - 1, 0);
         c1[k] = std::min<std::int64_t>(c + 1, dims_[k] - 1);
       }
+      const Index self = exclude_self ? static_cast<Index>(i) : none;
+      const Scalar* sx = sorted_[0].data();
+      const Scalar* sy = sorted_[1].data();
+      const Scalar* sz = sorted_[Dim - 1].data();
+      const Scalar x0 = x[0], y0 = x[1], z0 = x[Dim - 1];
       // Rows along x are contiguous in the cell order: one run of sorted points per (y, z).
-      const std::int64_t z0 = (Dim == 3) ? c0[2] : 0, z1 = (Dim == 3) ? c1[2] : 0;
-      for (std::int64_t cz = z0; cz <= z1; ++cz) {
+      const std::int64_t zlo = (Dim == 3) ? c0[2] : 0, zhi = (Dim == 3) ? c1[2] : 0;
+      for (std::int64_t cz = zlo; cz <= zhi; ++cz) {
         for (std::int64_t cy = c0[1]; cy <= c1[1]; ++cy) {
           const std::int64_t row = (Dim == 3 ? cz * dims_[1] + cy : cy) * dims_[0];
           const Index kb = cell_start_[static_cast<std::size_t>(row + c0[0])];
           const Index ke = cell_start_[static_cast<std::size_t>(row + c1[0] + 1)];
+          sink.reserve(static_cast<std::size_t>(ke - kb));
           for (Index k = kb; k < ke; ++k) {
-            const Scalar d2 = detail::squared_distance<Dim, Scalar>(x, sorted_position_[k]);
-            if (d2 <= r2) {
-              const Index j = order_[k];
-              if (!(exclude_self && static_cast<std::size_t>(j) == i)) push(j, d2);
+            // Same arithmetic as detail::squared_distance, so all searches agree at the radius.
+            const Scalar dx = sx[k] - x0, dy = sy[k] - y0;
+            Scalar d2 = dx * dx + dy * dy;
+            if constexpr (Dim == 3) {
+              const Scalar dz = sz[k] - z0;
+              d2 += dz * dz;
             }
+            const Index j = order_[static_cast<std::size_t>(k)];
+            sink.put(j, d2, (d2 <= r2) & (j != self));
           }
         }
       }
@@ -192,10 +236,11 @@ class CellListSearch {
   vec_type lower_ = vec_type::Zero();
   std::array<std::int64_t, Dim> dims_{};
   std::vector<Index> cell_start_;
-  std::vector<Index> fill_;
+  std::vector<Index> histogram_;
   std::vector<std::int64_t> cell_of_;
   std::vector<Index> order_;
-  VecArray<Dim, Scalar> sorted_position_;
+  // Source coordinates in cell order, one array per axis, so the distance loop streams.
+  std::array<std::vector<Scalar>, Dim> sorted_;
   mutable detail::CsrScratch<Scalar> scratch_;
 };
 

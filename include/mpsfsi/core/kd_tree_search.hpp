@@ -92,11 +92,12 @@ class KdTreeSearch {
     const Scalar worst = r2 * (Scalar(1) + 4 * std::numeric_limits<Scalar>::epsilon()) +
                          std::numeric_limits<Scalar>::min();
     const auto params = detail::nanoflann_compat::unsorted_search();
-    detail::build_csr(queries.size(), options, scratch_, out, [&](std::size_t i, auto&& push) {
+    detail::build_csr(queries.size(), options, scratch_, out, [&](std::size_t i, detail::CsrSink<Scalar>& sink) {
       const vec_type& x = queries[i];
       auto on_point = [&](Index j) {
         const Scalar d2 = detail::squared_distance<Dim, Scalar>(x, data_->points[static_cast<std::size_t>(j)]);
-        if (d2 <= r2 && !(exclude_self && static_cast<std::size_t>(j) == i)) push(j, d2);
+        sink.reserve(1);
+        sink.put(j, d2, d2 <= r2 && !(exclude_self && static_cast<std::size_t>(j) == i));
       };
       detail::nanoflann_compat::CallbackResultSet<Scalar, Index, decltype(on_point)> result(worst, on_point);
       tree_->findNeighbors(result, x.data(), params);
