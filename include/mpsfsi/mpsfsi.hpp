@@ -21,4 +21,9 @@
 #include "mpsfsi/kernels/number_density.hpp"
 #include "mpsfsi/kernels/weight.hpp"
 
+#include "mpsfsi/io/csv_writer.hpp"
+#include "mpsfsi/io/progress.hpp"
+#include "mpsfsi/io/pvd_writer.hpp"
+#include "mpsfsi/io/vtu_writer.hpp"
+
 #include "mpsfsi/scenes/lattice.hpp"
