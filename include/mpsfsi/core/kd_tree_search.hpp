@@ -39,11 +39,12 @@ class KdTreeSearch {
   using scalar_type = Scalar;
   using vec_type = Vec<Dim, Scalar>;
 
-  explicit KdTreeSearch(Scalar radius, std::size_t leaf_max_size = 16)
-      : radius_(radius), leaf_max_size_(leaf_max_size) {
+  explicit KdTreeSearch(Scalar radius, std::size_t leaf_max_size = 16) : radius_(radius) {
     if (!(radius > 0) || !std::isfinite(radius))
       detail::throw_invalid("KdTreeSearch", "search radius must be positive and finite, got " +
                                                 std::to_string(radius));
+    if (leaf_max_size == 0) detail::throw_invalid("KdTreeSearch", "leaf size must be positive");
+    tree_ = std::make_unique<Tree>(Dim, *data_, detail::nanoflann_compat::deferred_tree_parameters(leaf_max_size));
   }
 
   Scalar radius() const { return radius_; }
@@ -51,10 +52,9 @@ class KdTreeSearch {
 
   void build(const VecArray<Dim, Scalar>& points) {
     check_finite(points);
-    data_->points = points;
-    tree_ = std::make_unique<Tree>(Dim, *data_, detail::nanoflann_compat::tree_parameters(leaf_max_size_));
-    // nanoflann 1.4 builds in the constructor; buildIndex() again is harmless and 1.5-proof.
+    data_->points = points;  // reuses the copy's capacity from the last build
     tree_->buildIndex();
+    built_ = true;
   }
 
   void query(const VecArray<Dim, Scalar>& queries, BasicNeighborList<Scalar>& out,
@@ -82,7 +82,7 @@ class KdTreeSearch {
 
   void run(const VecArray<Dim, Scalar>& queries, BasicNeighborList<Scalar>& out,
            const QueryOptions& options, bool exclude_self) const {
-    if (!tree_ || num_points() == 0) {
+    if (!built_ || num_points() == 0) {
       out.offsets.assign(queries.size() + 1, 0);
       out.indices.clear();
       out.distances.clear();
@@ -105,7 +105,7 @@ class KdTreeSearch {
   }
 
   Scalar radius_;
-  std::size_t leaf_max_size_;
+  bool built_ = false;
   // Behind a pointer: the tree keeps a reference to the dataset, which must survive a move.
   std::unique_ptr<Dataset> data_ = std::make_unique<Dataset>();
   std::unique_ptr<Tree> tree_;

@@ -27,8 +27,11 @@ using SearchParameters = nanoflann::SearchParams;
 inline SearchParameters unsorted_search() { return SearchParameters(32, 0.0f, false); }
 #endif
 
-inline nanoflann::KDTreeSingleIndexAdaptorParams tree_parameters(std::size_t leaf_max_size) {
-  return nanoflann::KDTreeSingleIndexAdaptorParams(leaf_max_size);
+// Tree parameters for a tree that is built later, by an explicit buildIndex(): both 1.4 and 1.5
+// build in the constructor unless told to skip it.
+inline nanoflann::KDTreeSingleIndexAdaptorParams deferred_tree_parameters(std::size_t leaf_max_size) {
+  return nanoflann::KDTreeSingleIndexAdaptorParams(leaf_max_size,
+                                                   nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex);
 }
 
 // A radius result set that forwards each point to a callback instead of storing it. nanoflann
