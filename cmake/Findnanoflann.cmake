@@ -1,10 +1,15 @@
 # SPDX-License-Identifier: BSD-3-Clause
-# Finds nanoflann and provides nanoflann::nanoflann.
-# nanoflann's own CMake package is used when installed; Debian 12's libnanoflann-dev ships only
-# the header, so otherwise the header is located and an imported target is made for it.
+# Finds nanoflann and provides nanoflann::nanoflann: a target that already exists (e.g. from a
+# parent project), else nanoflann's own CMake package, else the bare header with an imported
+# target made for it (installations that ship no CMake files).
 # Sets nanoflann_FOUND, nanoflann_VERSION and nanoflann_INCLUDE_DIR.
 
-find_package(nanoflann CONFIG QUIET)
+if(TARGET nanoflann::nanoflann)
+  set(nanoflann_FOUND TRUE)
+  return()
+endif()
+
+find_package(nanoflann ${nanoflann_FIND_VERSION} CONFIG QUIET)
 if(nanoflann_FOUND AND TARGET nanoflann::nanoflann)
   return()
 endif()

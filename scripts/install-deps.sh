@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libnanoflann-dev # the library's dependencies
   doctest-dev                    # tests
   libbenchmark-dev               # micro-benchmarks
-  python3 python3-matplotlib     # plot scripts of the examples
+  python3 python3-matplotlib     # plot scripts of the examples (from issue 3 on)
 )
 
 missing=()
@@ -20,8 +20,14 @@ if [ ${#missing[@]} -eq 0 ]; then
   exit 0
 fi
 
-SUDO=""
-[ "$(id -u)" -ne 0 ] && SUDO="sudo"
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+SUDO=()
+if [ "$(id -u)" -ne 0 ]; then
+  if ! command -v sudo >/dev/null; then
+    echo "install-deps: run as root (no sudo here) to install: ${missing[*]}" >&2
+    exit 1
+  fi
+  SUDO=(sudo -n)  # never prompt: CI has no standard input
+fi
+# Noninteractive through sudo too, so tzdata and friends ask no debconf questions.
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -55,6 +55,17 @@ TEST_CASE_TEMPLATE("core.particle_set: fields grow, permute and validate togethe
   SUBCASE("bad permutation") { CHECK_THROWS_AS(set.permute({0, 1}), InvalidInput); }
 }
 
+TEST_CASE("core.particle_set: ids are never reused") {
+  ParticleSet<2> set(3);
+  set.permute({2, 1, 0});
+  set.resize(1);  // keeps the particle with id 2
+  set.resize(3);  // new particles get fresh ids, never 2 a second time
+  CHECK(set.ids()[0] == 2);
+  CHECK(set.ids()[1] == 3);
+  CHECK(set.ids()[2] == 4);
+  CHECK_THROWS_AS(set.permute({0, 1, 7}), InvalidInput);
+}
+
 TEST_CASE("core.particle_set: holds a million particles") {
   ParticleSet<3> set(1000000);
   auto p = set.add_field<double>("pressure");

@@ -46,6 +46,8 @@ class CellListSearch {
   // Bins the source points. Throws InvalidInput on a non-finite position (naming the index).
   void build(const VecArray<Dim, Scalar>& points) {
     const std::size_t n = points.size();
+    if (n > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
+      detail::throw_invalid("CellListSearch", "more than 2^31 - 1 points");
     check_finite(points);
     for (auto& coordinate : sorted_) coordinate.resize(n);
     order_.resize(n);

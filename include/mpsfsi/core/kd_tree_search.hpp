@@ -39,12 +39,11 @@ class KdTreeSearch {
   using scalar_type = Scalar;
   using vec_type = Vec<Dim, Scalar>;
 
-  explicit KdTreeSearch(Scalar radius, std::size_t leaf_max_size = 16) : radius_(radius) {
+  explicit KdTreeSearch(Scalar radius, std::size_t leaf_max_size = 16) : radius_(radius), leaf_(leaf_max_size) {
     if (!(radius > 0) || !std::isfinite(radius))
       detail::throw_invalid("KdTreeSearch", "search radius must be positive and finite, got " +
                                                 std::to_string(radius));
     if (leaf_max_size == 0) detail::throw_invalid("KdTreeSearch", "leaf size must be positive");
-    tree_ = std::make_unique<Tree>(Dim, *data_, detail::nanoflann_compat::deferred_tree_parameters(leaf_max_size));
   }
 
   Scalar radius() const { return radius_; }
@@ -53,7 +52,7 @@ class KdTreeSearch {
   void build(const VecArray<Dim, Scalar>& points) {
     check_finite(points);
     data_->points = points;  // reuses the copy's capacity from the last build
-    tree_->buildIndex();
+    tree_ = std::make_unique<Tree>(Dim, *data_, detail::nanoflann_compat::tree_parameters(leaf_));
     built_ = true;
   }
 
@@ -105,6 +104,7 @@ class KdTreeSearch {
   }
 
   Scalar radius_;
+  std::size_t leaf_;
   bool built_ = false;
   // Behind a pointer: the tree keeps a reference to the dataset, which must survive a move.
   std::unique_ptr<Dataset> data_ = std::make_unique<Dataset>();

@@ -11,7 +11,8 @@ namespace mpsfsi {
 // Fixed-radius neighbour lists in compressed sparse row form: the neighbours of query i are
 // indices[offsets[i] .. offsets[i+1]), in the order the search found them (deterministic for a
 // given input, whatever the thread count). Distances |r_j - r_i| sit beside the indices when the
-// search was asked to store them. Built once per step and shared by every operator of the step.
+// search was asked to store them; they are those of the positions searched, and operators use
+// them, so rebuild the list after particles move. Built once per step and shared by every operator of the step.
 template <class Scalar = double>
 struct BasicNeighborList {
   std::vector<Offset> offsets{0};

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -78,11 +79,14 @@ class ParticleSet {
   // Resizes every field; new particles sit at the origin, at rest, as fluid, with new ids.
   void resize(std::size_t n) {
     const std::size_t old = id_.size();
+    if (n > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
+      detail::throw_invalid("ParticleSet::resize", "more than 2^31 - 1 particles");
     position_.resize(n, vec_type::Zero());
     velocity_.resize(n, vec_type::Zero());
     kind_.resize(n, ParticleKind::fluid);
     id_.resize(n);
-    for (std::size_t k = old; k < n; ++k) id_[k] = static_cast<Index>(k);
+    // Ids are never reused, even after a permute and a shrink.
+    for (std::size_t k = old; k < n; ++k) id_[k] = next_id_++;
     for_each_store([n](auto& store) {
       using T = typename std::decay_t<decltype(store.data)>::value_type::value_type;
       for (auto& f : store.data) f.resize(n, zero_of<T>());
@@ -146,6 +150,9 @@ class ParticleSet {
                                                         std::to_string(new_to_old.size()) +
                                                         " entries for " + std::to_string(size()) +
                                                         " particles");
+    for (Index k : new_to_old)
+      if (k < 0 || static_cast<std::size_t>(k) >= size())
+        detail::throw_invalid("ParticleSet::permute", "index " + std::to_string(k) + " out of range");
     detail::apply_permutation(position_, new_to_old);
     detail::apply_permutation(velocity_, new_to_old);
     detail::apply_permutation(kind_, new_to_old);
@@ -231,6 +238,7 @@ class ParticleSet {
   VecArray<Dim, Scalar> velocity_;
   std::vector<ParticleKind> kind_;
   std::vector<Index> id_;
+  Index next_id_ = 0;
   detail::FieldStore<Scalar> scalars_;
   detail::FieldStore<vec_type> vectors_;
   detail::FieldStore<mat_type> tensors_;

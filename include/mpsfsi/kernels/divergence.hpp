@@ -38,7 +38,7 @@ void divergence(const VecArray<Dim, Scalar>& x, const BasicNeighborList<Scalar>&
       const Vec<Dim, Scalar> r = x[j] - x[i];
       const Scalar d = detail::pair_distance(list, k, r);
       const Scalar w = Weight::value(d, c.re);
-      if (w == Scalar(0)) continue;
+      if (w == Scalar(0) || !(d > Scalar(0))) continue;  // coincident particles: no direction
       g.noalias() += (w / (d * d)) * ((u[j] - u[i]) * r.transpose());
     }
     Scalar s = 0;

@@ -52,7 +52,8 @@ void gradient(const VecArray<Dim, Scalar>& x, const BasicNeighborList<Scalar>& l
       const Vec<Dim, Scalar> r = x[j] - x[i];
       const Scalar d = detail::pair_distance(list, k, r);
       const Scalar w = Weight::value(d, c.re);
-      if (w == Scalar(0)) continue;
+      // Coincident particles (d = 0) have no direction: skip them rather than produce NaN.
+      if (w == Scalar(0) || !(d > Scalar(0))) continue;
       sum += ((phi[j] - ref) * w / (d * d)) * r;
     }
     // C_i is constant over the sum, so it is applied once.

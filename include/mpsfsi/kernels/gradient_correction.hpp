@@ -60,7 +60,7 @@ class KhayyerGotohCorrection {
         const Vec<Dim, Scalar> r = x[static_cast<std::size_t>(list.indices[k])] - x[i];
         const Scalar d = detail::pair_distance(list, k, r);
         const Scalar w = Weight::value(d, c.re);
-        if (w == Scalar(0)) continue;
+        if (w == Scalar(0) || !(d > Scalar(0))) continue;  // coincident particles: no direction
         a.noalias() += (w / (d * d)) * (r * r.transpose());
       }
       a /= c.n0;

@@ -27,19 +27,20 @@ using SearchParameters = nanoflann::SearchParams;
 inline SearchParameters unsorted_search() { return SearchParameters(32, 0.0f, false); }
 #endif
 
-// Tree parameters for a tree that is built later, by an explicit buildIndex(): both 1.4 and 1.5
-// build in the constructor unless told to skip it.
-inline nanoflann::KDTreeSingleIndexAdaptorParams deferred_tree_parameters(std::size_t leaf_max_size) {
-  return nanoflann::KDTreeSingleIndexAdaptorParams(leaf_max_size,
-                                                   nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex);
+// Every version builds the index in the tree's constructor (the flag to defer it only exists
+// from 1.4.3 on, and Debian's 1.4.3 calls itself 1.4.2), so a rebuild constructs a new tree.
+inline nanoflann::KDTreeSingleIndexAdaptorParams tree_parameters(std::size_t leaf_max_size) {
+  return nanoflann::KDTreeSingleIndexAdaptorParams(leaf_max_size);
 }
 
 // A radius result set that forwards each point to a callback instead of storing it. nanoflann
 // passes points with squared distance strictly below worstDist(); the callback applies the
 // library's own inclusive test, so worstDist() is set a hair above the radius.
-template <class DistanceType, class IndexType, class Callback>
+template <class DistanceType_, class IndexType_, class Callback>
 class CallbackResultSet {
  public:
+  using DistanceType = DistanceType_;  // read by nanoflann 1.7+
+  using IndexType = IndexType_;
   CallbackResultSet(DistanceType worst, Callback& callback) : worst_(worst), callback_(callback) {}
   void init() {}
   void clear() {}
