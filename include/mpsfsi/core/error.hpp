@@ -24,6 +24,22 @@ class IoError : public Error {
   using Error::Error;
 };
 
+// A run that became unphysical (non-finite or runaway values, a linear solve that did not
+// converge). The state of the solver is left at the last good step.
+class SimulationError : public Error {
+ public:
+  SimulationError(const std::string& what, long long step, double time, long long particle)
+      : Error(what), step_(step), time_(time), particle_(particle) {}
+  long long step() const { return step_; }
+  double time() const { return time_; }
+  long long particle() const { return particle_; }  // -1 when no single particle is to blame
+
+ private:
+  long long step_;
+  double time_;
+  long long particle_;
+};
+
 namespace detail {
 
 [[noreturn]] inline void throw_invalid(const std::string& where, const std::string& what) {

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mpsfsi/core/neighbor_list.hpp"
+#include "mpsfsi/core/parallel.hpp"
+#include "mpsfsi/core/types.hpp"
+
+namespace mpsfsi {
+
+// Copies the entries (j, distance) of `in` for which keep(j) holds into `out`, row by row, so
+// operators that must not see some particles (e.g. the pressure gradient and the dummy wall
+// particles) reuse the step's one search. Allocates only while `out` grows.
+template <class Scalar, class Keep>
+void filter_neighbors(const BasicNeighborList<Scalar>& in, Keep&& keep, BasicNeighborList<Scalar>& out) {
+  const std::size_t n = in.num_queries();
+  out.offsets.resize(n + 1);
+  out.offsets[0] = 0;
+  MPSFSI_OMP(parallel for schedule(static))
+  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    Offset c = 0;
+    for (Offset k = in.begin(i); k < in.end(i); ++k) c += keep(in.indices[k]) ? 1 : 0;
+    out.offsets[i + 1] = c;
+  }
+  for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
+  out.indices.resize(static_cast<std::size_t>(out.offsets[n]));
+  const bool dist = in.has_distances();
+  out.distances.resize(dist ? out.indices.size() : 0);
+  MPSFSI_OMP(parallel for schedule(static))
+  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    Offset p = out.offsets[i];
+    for (Offset k = in.begin(i); k < in.end(i); ++k) {
+      if (!keep(in.indices[k])) continue;
+      out.indices[p] = in.indices[k];
+      if (dist) out.distances[p] = in.distances[k];
+      ++p;
+    }
+  }
+}
+
+}  // namespace mpsfsi

@@ -1,0 +1,285 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mpsfsi/core/cell_list_search.hpp"
+#include "mpsfsi/core/error.hpp"
+#include "mpsfsi/core/filter_neighbors.hpp"
+#include "mpsfsi/core/neighbor_search.hpp"
+#include "mpsfsi/core/particle_set.hpp"
+#include "mpsfsi/fluid/fluid_parameters.hpp"
+#include "mpsfsi/fluid/free_surface.hpp"
+#include "mpsfsi/fluid/linear_solver.hpp"
+#include "mpsfsi/fluid/ppe.hpp"
+#include "mpsfsi/kernels/divergence.hpp"
+#include "mpsfsi/kernels/gradient.hpp"
+#include "mpsfsi/kernels/gradient_correction.hpp"
+#include "mpsfsi/kernels/laplacian.hpp"
+#include "mpsfsi/kernels/lattice_constants.hpp"
+#include "mpsfsi/kernels/number_density.hpp"
+#include "mpsfsi/kernels/weight.hpp"
+
+namespace mpsfsi {
+
+// The policy bundle of FluidSolver. Override one entry by deriving:
+//   struct MyPolicies : FluidDefaults<2> { using linear_solver = IncompleteCholeskyCg; };
+template <int Dim>
+struct FluidDefaults {
+  using weight = KoshizukaWeight;
+  using gradient_correction = KhayyerGotohCorrection<Dim, double>;
+  using linear_solver = JacobiCg;
+  using free_surface = NumberDensitySurface;
+  using neighbor_search = CellListSearch<Dim, double>;
+  // Koshizuka's min-reference pressure gradient keeps every pair repulsive.
+  static constexpr GradientReference pressure_gradient_reference = GradientReference::neighbour_minimum;
+};
+
+// Wall-clock seconds spent in each phase of the last step.
+struct FluidStepTimings {
+  double search = 0, predictor = 0, ppe_assembly = 0, ppe_solve = 0, corrector = 0;
+  double total() const { return search + predictor + ppe_assembly + ppe_solve + corrector; }
+};
+
+// Incompressible free-surface flow by PNU-MPS (Lee et al. 2011), the paper's eqs 9-15:
+//   predictor   u* = u^k + dt (nu lap u^k + f + g)                                    (eq 9)
+//   PPE         lap P = (rho/dt) div u* + gamma (rho/dt^2) (n0 - n^k)/n0              (eq 11)
+//   corrector   u^{k+1} = u* - (dt/rho) grad P  (gradient-corrected, Khayyer & Gotoh) (eq 14)
+//   positions   r^{k+1} = r^k + dt u^{k+1}                                            (eq 15)
+// Particle kinds: fluid; wall (in the PPE, moves with the velocity the user gives it); dummy
+// (counts in the number density only). One neighbour search per step serves every operator.
+template <int Dim, class Policies = FluidDefaults<Dim>>
+class FluidSolver {
+  using Weight = typename Policies::weight;
+  using Search = typename Policies::neighbor_search;
+  static_assert(check_weight<Weight>());
+  static_assert(check_neighbor_search<Search>());
+
+ public:
+  using vec_type = Vec<Dim, double>;
+  using parameters_type = FluidParameters<Dim, double>;
+
+  // Takes the particles (fluid, wall and dummy) and the parameters; throws InvalidInput on an
+  // empty set, a set without fluid, non-finite values, overlapping particles or bad parameters.
+  FluidSolver(ParticleSet<Dim> particles, parameters_type params)
+      : p_(std::move(params)), set_(std::move(particles)), search_(radius_of(p_)) {
+    p_.validate();
+    if (set_.empty()) detail::throw_invalid("FluidSolver", "the particle set is empty");
+    set_.validate();
+    if (std::none_of(set_.kinds().begin(), set_.kinds().end(), [](ParticleKind k) { return k == ParticleKind::fluid; }))
+      detail::throw_invalid("FluidSolver", "the particle set has no fluid particles");
+    pressure_ = set_.template add_field<double>("pressure");
+    density_ = set_.template add_field<double>("number_density");
+    surface_field_ = set_.template add_field<std::int32_t>("free_surface");
+    c_n_ = ideal_lattice_constants<Dim, Weight>(p_.l0, p_.re_density());
+    c_lap_ = ideal_lattice_constants<Dim, Weight>(p_.l0, p_.re_laplacian());
+    external_.assign(set_.size(), vec_type::Zero());
+    double lo = std::numeric_limits<double>::max(), hi = -lo;
+    for (std::size_t i = 0; i < set_.size(); ++i) {
+      lo = std::min(lo, set_.positions()[i][Dim - 1]);
+      hi = std::max(hi, set_.positions()[i][Dim - 1]);
+    }
+    reference_speed_ = std::sqrt(2 * p_.gravity.norm() * std::max(hi - lo, p_.l0));
+    update_neighbors();
+    check_overlaps();
+  }
+
+  // Advances one time step. Throws SimulationError (step, time, particle) if the step would
+  // produce non-finite or runaway velocities or the PPE does not converge; the state is then
+  // the one before the step.
+  void step() {
+    auto tick = clock::now();
+    if (step_count_ > 0) update_neighbors();
+    timings_.search = lap_time(tick);
+    const double dt = choose_dt();
+    auto& x = set_.positions();
+    auto& u = set_.velocities();
+    const auto& kind = set_.kinds();
+    const std::size_t n = set_.size();
+
+    // Number density n^k, free surface, and the predictor (eq 9) with the viscous term.
+    auto& nd = set_.field(density_);
+    number_density<Weight>(x, list_all_, p_.re_density(), nd);
+    Policies::free_surface::detect(x, kind, list_all_, nd, c_n_.n0, p_.surface_beta, p_.l0, p_.re_density(), surface_);
+    laplacian<Weight>(x, list_all_, u, c_lap_, lap_u_);
+    u_star_.resize(n);
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      u_star_[i] = kind[i] == ParticleKind::fluid
+                       ? vec_type(u[i] + dt * (p_.kinematic_viscosity * lap_u_[i] + p_.gravity + external_[i]))
+                       : u[i];
+      set_.field(surface_field_)[i] = surface_[i];
+    }
+    timings_.predictor = lap_time(tick);
+
+    // PPE source (eq 11) over fluid and wall particles, assembled and solved.
+    divergence<Weight>(x, list_pw_, u_star_, c_n_, NoGradientCorrection<Dim, double>{}, div_);
+    source_.resize(n);
+    const double rho = p_.density;
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
+      const double deficit = p_.density_term_compression_only ? std::min(c_n_.n0 - nd[i], 0.0) : c_n_.n0 - nd[i];
+      source_[i] = rho / dt * div_[i] + p_.gamma * rho / (dt * dt) * deficit / c_n_.n0;
+    }
+    ppe_.assemble(x, kind, surface_, list_pw_, c_lap_, source_, a_, b_);
+    timings_.ppe_assembly = lap_time(tick);
+    auto& pressure = set_.field(pressure_);
+    solution_.resize(static_cast<Eigen::Index>(ppe_.num_unknowns()));
+    for (std::size_t r = 0; r < ppe_.num_unknowns(); ++r)
+      solution_[static_cast<Eigen::Index>(r)] = pressure[static_cast<std::size_t>(ppe_.particle_of_row()[r])];
+    report_ = solver_.solve(a_, b_, solution_, p_.ppe_tolerance, p_.ppe_max_iterations);
+    timings_.ppe_solve = lap_time(tick);
+    if (!report_.converged || !solution_.allFinite())
+      throw SimulationError("FluidSolver: PPE did not converge at step " + std::to_string(step_count_ + 1) +
+                                " (t = " + std::to_string(time_ + dt) + "): " + std::to_string(report_.iterations) +
+                                " iterations, relative residual " + std::to_string(report_.relative_residual),
+                            step_count_ + 1, time_ + dt, -1);
+    new_pressure_.assign(n, 0.0);
+    for (std::size_t r = 0; r < ppe_.num_unknowns(); ++r) {
+      double value = solution_[static_cast<Eigen::Index>(r)];
+      if (p_.negative_pressure == NegativePressure::clamp_to_zero) value = std::max(value, 0.0);
+      new_pressure_[static_cast<std::size_t>(ppe_.particle_of_row()[r])] = value;
+    }
+
+    // Corrector (eq 14) with the corrected pressure gradient, checked before it is committed.
+    correction_.template update<Weight>(x, list_pw_, c_n_);
+    gradient<Weight>(x, list_pw_, new_pressure_, c_n_, correction_, grad_p_, Policies::pressure_gradient_reference);
+    const double speed_limit = p_.blowup_speed_factor * std::max(reference_speed_, p_.l0 / dt);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (kind[i] != ParticleKind::fluid) continue;
+      const vec_type v = u_star_[i] - (dt / rho) * grad_p_[i];
+      if (!v.allFinite() || v.norm() > speed_limit)
+        throw SimulationError("FluidSolver: blow-up at step " + std::to_string(step_count_ + 1) + " (t = " +
+                                  std::to_string(time_ + dt) + "): particle " + std::to_string(i) + " (id " +
+                                  std::to_string(set_.ids()[i]) + ") would move at " + std::to_string(v.norm()) +
+                                  " m/s, limit " + std::to_string(speed_limit) + " m/s",
+                              step_count_ + 1, time_ + dt, static_cast<long long>(i));
+    }
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (kind[i] == ParticleKind::fluid) u[i] = u_star_[i] - (dt / rho) * grad_p_[i];
+      x[i] += dt * u[i];  // eq 15; walls and dummies move with their prescribed velocity
+      pressure[i] = new_pressure_[i];
+    }
+    time_ += dt;
+    last_dt_ = dt;
+    ++step_count_;
+    timings_.corrector = lap_time(tick);
+  }
+
+  // Steps until the simulated time reaches end_time (the last step is shortened to land on it
+  // only when the time step is automatic).
+  void advance_to(double end_time) {
+    while (time_ < end_time - 1e-12 * std::max(1.0, end_time)) step();
+  }
+
+  // The largest stable step for the current velocities: Courant and viscous limits.
+  double stable_dt() const {
+    double umax = 0;
+    for (std::size_t i = 0; i < set_.size(); ++i)
+      if (set_.kinds()[i] == ParticleKind::fluid) umax = std::max(umax, set_.velocities()[i].norm());
+    // Before anything moves, the speed gravity gives over one spacing bounds the Courant limit.
+    umax = std::max(umax, std::sqrt(p_.gravity.norm() * p_.l0));
+    double dt = umax > 0 ? p_.courant * p_.l0 / umax : std::numeric_limits<double>::max();
+    if (p_.kinematic_viscosity > 0) dt = std::min(dt, p_.viscous_number * p_.l0 * p_.l0 / p_.kinematic_viscosity);
+    return dt;
+  }
+
+  double time() const { return time_; }
+  long long step_count() const { return step_count_; }
+  double last_dt() const { return last_dt_; }
+  ParticleSet<Dim>& particles() { return set_; }
+  const ParticleSet<Dim>& particles() const { return set_; }
+  const std::vector<double>& pressure() const { return set_.field(pressure_); }
+  const std::vector<double>& number_density_field() const { return set_.field(density_); }
+  const std::vector<std::uint8_t>& free_surface() const { return surface_; }
+  // Acceleration added to fluid particles in the predictor (eq 9's coupling term f_S->F).
+  VecArray<Dim>& external_acceleration() { return external_; }
+  const SolveReport& last_solve() const { return report_; }
+  const FluidStepTimings& last_timings() const { return timings_; }
+  const parameters_type& parameters() const { return p_; }
+  const MpsConstants<double>& density_constants() const { return c_n_; }
+  const MpsConstants<double>& laplacian_constants() const { return c_lap_; }
+  const NeighborList& neighbors() const { return list_all_; }
+
+ private:
+  using clock = std::chrono::steady_clock;
+  static double lap_time(clock::time_point& t) {
+    const auto now = clock::now();
+    const double s = std::chrono::duration<double>(now - t).count();
+    t = now;
+    return s;
+  }
+  static double radius_of(const parameters_type& p) {
+    p.validate();
+    return std::max(p.re_density(), p.re_laplacian());
+  }
+
+  void update_neighbors() {
+    QueryOptions opt;
+    opt.store_distances = true;
+    search_.build(set_.positions());
+    search_.self_query(set_.positions(), list_all_, opt);
+    const auto& kind = set_.kinds();
+    filter_neighbors(list_all_, [&](Index j) { return kind[static_cast<std::size_t>(j)] != ParticleKind::dummy; }, list_pw_);
+  }
+
+  void check_overlaps() const {
+    const double min_distance = 1e-3 * p_.l0;
+    for (std::size_t i = 0; i < set_.size(); ++i)
+      for (Offset k = list_all_.begin(i); k < list_all_.end(i); ++k)
+        if (list_all_.distances[static_cast<std::size_t>(k)] < min_distance)
+          detail::throw_invalid("FluidSolver", "particles " + std::to_string(i) + " and " +
+                                                   std::to_string(list_all_.indices[k]) + " overlap (closer than 1e-3 l0)");
+  }
+
+  double choose_dt() {
+    const double limit = stable_dt();
+    if (p_.dt <= 0) return limit;
+    if (p_.dt > limit) {
+      const std::string msg = "FluidSolver: time step " + std::to_string(p_.dt) + " s exceeds the stability limit " +
+                              std::to_string(limit) + " s (Courant " + std::to_string(p_.courant) +
+                              ", viscous " + std::to_string(p_.viscous_number) + ") at step " +
+                              std::to_string(step_count_ + 1);
+      if (!p_.warn_only_on_unstable_dt) {
+        if (step_count_ == 0) detail::throw_invalid("FluidSolver", msg);
+        throw SimulationError(msg, step_count_ + 1, time_, -1);
+      }
+      if (!warned_dt_) std::cerr << "warning: " << msg << '\n';
+      warned_dt_ = true;
+    }
+    return p_.dt;
+  }
+
+  parameters_type p_;
+  ParticleSet<Dim> set_;
+  Search search_;
+  NeighborList list_all_, list_pw_;
+  MpsConstants<double> c_n_, c_lap_;
+  FieldHandle<double> pressure_, density_;
+  FieldHandle<std::int32_t> surface_field_;
+  typename Policies::gradient_correction correction_;
+  typename Policies::linear_solver solver_;
+  PpeAssembler<Weight, Dim, double> ppe_;
+  PpeMatrix a_;
+  PpeVector b_, solution_;
+  std::vector<std::uint8_t> surface_;
+  VecArray<Dim> external_, u_star_, lap_u_, grad_p_;
+  std::vector<double> div_, source_, new_pressure_;
+  SolveReport report_;
+  FluidStepTimings timings_;
+  double time_ = 0, last_dt_ = 0, reference_speed_ = 0;
+  long long step_count_ = 0;
+  bool warned_dt_ = false;
+};
+
+}  // namespace mpsfsi
