@@ -68,10 +68,12 @@ class ParticleSet {
   // Appends one particle; extra fields get zero. Returns its index.
   Index add(const vec_type& position, ParticleKind kind = ParticleKind::fluid,
             const vec_type& velocity = vec_type::Zero()) {
+    // Copied first: the arguments may refer into this set's own arrays, which resize() moves.
+    const vec_type p = position, v = velocity;
     const std::size_t n = size();
     resize(n + 1);
-    position_[n] = position;
-    velocity_[n] = velocity;
+    position_[n] = p;
+    velocity_[n] = v;
     kind_[n] = kind;
     return static_cast<Index>(n);
   }
