@@ -21,7 +21,8 @@ struct FluidParameters {
   Scalar density = 1000;               // rho
   Scalar kinematic_viscosity = 1e-6;   // nu
   Vec<Dim, Scalar> gravity = gravity_default();
-  Scalar re_density_ratio = Scalar(2.1);    // number density and gradient
+  Scalar re_density_ratio = Scalar(2.1);    // number density: free surface, eq 11's density term
+  Scalar re_gradient_ratio = Scalar(2.1);   // pressure gradient and divergence of u*
   Scalar re_laplacian_ratio = Scalar(3.1);  // viscosity and PPE
   Scalar gamma = Scalar(0.03);              // PPE blending, eq 11 (Lee et al. 2011)
   // Apply eq 11's density term only where the fluid is compressed (n > n0). Particles just
@@ -51,6 +52,7 @@ struct FluidParameters {
   }
 
   Scalar re_density() const { return re_density_ratio * l0; }
+  Scalar re_gradient() const { return re_gradient_ratio * l0; }
   Scalar re_laplacian() const { return re_laplacian_ratio * l0; }
 
   // Throws InvalidInput naming the first parameter that is missing or out of range.
@@ -62,7 +64,7 @@ struct FluidParameters {
     need(std::isfinite(density) && density > 0, "density must be positive");
     need(std::isfinite(kinematic_viscosity) && kinematic_viscosity >= 0, "kinematic_viscosity must be >= 0");
     need(gravity.allFinite(), "gravity must be finite");
-    need(re_density_ratio > 1 && re_laplacian_ratio > 1, "effective radii must exceed l0");
+    need(re_density_ratio > 1 && re_gradient_ratio > 1 && re_laplacian_ratio > 1, "effective radii must exceed l0");
     need(gamma >= 0 && gamma <= 1, "gamma must lie in [0, 1]");
     need(surface_beta > 0 && surface_beta < 1, "surface_beta must lie in (0, 1)");
     need(std::isfinite(dt) && dt >= 0, "dt must be >= 0 (0 selects the automatic step)");

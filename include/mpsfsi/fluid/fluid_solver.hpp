@@ -15,6 +15,7 @@
 #include "mpsfsi/core/filter_neighbors.hpp"
 #include "mpsfsi/core/neighbor_search.hpp"
 #include "mpsfsi/core/particle_set.hpp"
+#include "mpsfsi/fluid/collision.hpp"
 #include "mpsfsi/fluid/fluid_parameters.hpp"
 #include "mpsfsi/fluid/free_surface.hpp"
 #include "mpsfsi/fluid/linear_solver.hpp"
@@ -37,6 +38,7 @@ struct FluidDefaults {
   using gradient_correction = KhayyerGotohCorrection<Dim, double>;
   using linear_solver = JacobiCg;
   using free_surface = NumberDensitySurface;
+  using collision = KoshizukaCollision;
   using neighbor_search = CellListSearch<Dim, double>;
   // Koshizuka's min-reference pressure gradient keeps every pair repulsive.
   static constexpr GradientReference pressure_gradient_reference = GradientReference::neighbour_minimum;
@@ -79,6 +81,7 @@ class FluidSolver {
     density_ = set_.template add_field<double>("number_density");
     surface_field_ = set_.template add_field<std::int32_t>("free_surface");
     c_n_ = ideal_lattice_constants<Dim, Weight>(p_.l0, p_.re_density());
+    c_grad_ = ideal_lattice_constants<Dim, Weight>(p_.l0, p_.re_gradient());
     c_lap_ = ideal_lattice_constants<Dim, Weight>(p_.l0, p_.re_laplacian());
     external_.assign(set_.size(), vec_type::Zero());
     double lo = std::numeric_limits<double>::max(), hi = -lo;
@@ -118,10 +121,11 @@ class FluidSolver {
                        : u[i];
       set_.field(surface_field_)[i] = surface_[i];
     }
+    collision_.apply(x, kind, list_all_, p_.l0, u_star_, scratch_);
     timings_.predictor = lap_time(tick);
 
     // PPE source (eq 11) over fluid and wall particles, assembled and solved.
-    divergence<Weight>(x, list_pw_, u_star_, c_n_, NoGradientCorrection<Dim, double>{}, div_);
+    divergence<Weight>(x, list_pw_, u_star_, c_grad_, NoGradientCorrection<Dim, double>{}, div_);
     source_.resize(n);
     const double rho = p_.density;
     MPSFSI_OMP(parallel for schedule(static))
@@ -150,8 +154,8 @@ class FluidSolver {
     }
 
     // Corrector (eq 14) with the corrected pressure gradient, checked before it is committed.
-    correction_.template update<Weight>(x, list_pw_, c_n_);
-    gradient<Weight>(x, list_pw_, new_pressure_, c_n_, correction_, grad_p_, Policies::pressure_gradient_reference);
+    correction_.template update<Weight>(x, list_pw_, c_grad_);
+    gradient<Weight>(x, list_pw_, new_pressure_, c_grad_, correction_, grad_p_, Policies::pressure_gradient_reference);
     const double speed_limit = p_.blowup_speed_factor * std::max(reference_speed_, p_.l0 / dt);
     for (std::size_t i = 0; i < n; ++i) {
       if (kind[i] != ParticleKind::fluid) continue;
@@ -221,7 +225,7 @@ class FluidSolver {
   }
   static double radius_of(const parameters_type& p) {
     p.validate();
-    return std::max(p.re_density(), p.re_laplacian());
+    return std::max({p.re_density(), p.re_gradient(), p.re_laplacian()});
   }
 
   void update_neighbors() {
@@ -264,16 +268,17 @@ class FluidSolver {
   ParticleSet<Dim> set_;
   Search search_;
   NeighborList list_all_, list_pw_;
-  MpsConstants<double> c_n_, c_lap_;
+  MpsConstants<double> c_n_, c_grad_, c_lap_;
   FieldHandle<double> pressure_, density_;
   FieldHandle<std::int32_t> surface_field_;
   typename Policies::gradient_correction correction_;
   typename Policies::linear_solver solver_;
+  typename Policies::collision collision_;
   PpeAssembler<Weight, Dim, double> ppe_;
   PpeMatrix a_;
   PpeVector b_, solution_;
   std::vector<std::uint8_t> surface_;
-  VecArray<Dim> external_, u_star_, lap_u_, grad_p_;
+  VecArray<Dim> external_, u_star_, lap_u_, grad_p_, scratch_;
   std::vector<double> div_, source_, new_pressure_;
   SolveReport report_;
   FluidStepTimings timings_;

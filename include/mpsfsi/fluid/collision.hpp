@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mpsfsi/core/neighbor_list.hpp"
+#include "mpsfsi/core/parallel.hpp"
+#include "mpsfsi/core/particle_set.hpp"
+#include "mpsfsi/core/types.hpp"
+#include "mpsfsi/kernels/detail/pair.hpp"
+
+namespace mpsfsi {
+
+// Collision policies act on the predicted velocity u* of fluid particles:
+//   template <int Dim> void apply(x, kinds, list, l0, u_star, scratch)
+
+// No collision model (a null object).
+struct NoCollision {
+  template <int Dim, class Scalar>
+  void apply(const VecArray<Dim, Scalar>&, const std::vector<ParticleKind>&, const BasicNeighborList<Scalar>&,
+             Scalar, VecArray<Dim, Scalar>&, VecArray<Dim, Scalar>&) const {}
+};
+
+// The collision model of Koshizuka's reference MPS implementation (Koshizuka, Shibata &
+// Murotani, "Moving Particle Semi-implicit Method", 2018): a fluid particle i closer than
+// distance_ratio * l0 to another particle j and approaching it exchanges momentum along the line
+// of centres as an inelastic collision of equal masses with restitution coefficient e,
+//   u_i -= (1 + e)/2 ((u_i - u_j) . n) n,  n = r_ij/|r_ij|, when (u_i - u_j) . n > 0;
+// wall and dummy particles are not moved (they act as a fixed-velocity partner). Pairs at that
+// distance are far from any resolved state, so this only removes the grid-scale approach that
+// otherwise clusters particles (the instability seen in the hydrostatic tank without it).
+// Applied Jacobi-style (all pairs see the velocities before the collision), so the result does
+// not depend on the thread count.
+struct KoshizukaCollision {
+  double distance_ratio = 0.5;
+  double restitution = 0.2;
+
+  template <int Dim, class Scalar>
+  void apply(const VecArray<Dim, Scalar>& x, const std::vector<ParticleKind>& kinds,
+             const BasicNeighborList<Scalar>& list, Scalar l0, VecArray<Dim, Scalar>& u,
+             VecArray<Dim, Scalar>& scratch) const {
+    const Scalar reach = static_cast<Scalar>(distance_ratio) * l0;
+    const Scalar factor = Scalar(0.5) * (Scalar(1) + static_cast<Scalar>(restitution));
+    scratch = u;
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (kinds[i] != ParticleKind::fluid) continue;
+      Vec<Dim, Scalar> change = Vec<Dim, Scalar>::Zero();
+      for (Offset k = list.begin(i); k < list.end(i); ++k) {
+        const auto j = static_cast<std::size_t>(list.indices[k]);
+        const Vec<Dim, Scalar> r = x[j] - x[i];
+        const Scalar d = detail::pair_distance(list, k, r);
+        if (!(d < reach) || !(d > 0)) continue;
+        const Vec<Dim, Scalar> n = r / d;
+        const Scalar approach = (scratch[i] - scratch[j]).dot(n);
+        if (approach > 0) change -= factor * approach * n;
+      }
+      u[i] += change;
+    }
+  }
+};
+
+}  // namespace mpsfsi
