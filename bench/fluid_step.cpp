@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// One whole FluidSolver step of the 2D dam break of issue 3's speed target: a 0.25 m x 0.5 m
+// water column in a 1 m x 0.6 m tank, l0 = 5 mm, dt = 2e-4 s, PPE relative residual 1e-8.
+// The solver is first run to t = 0.1 s (the column is collapsing); each benchmark iteration is
+// one step from there on. Arguments: /threads. Counters: particle-steps per second and the share
+// of the step spent in the PPE solve.
+#include <benchmark/benchmark.h>
+
+#include "mpsfsi/core/parallel.hpp"
+#include "mpsfsi/fluid/fluid_solver.hpp"
+#include "mpsfsi/scenes/dam_break.hpp"
+
+using namespace mpsfsi;
+
+namespace {
+
+void dam_break_step(benchmark::State& state) {
+  const int saved = parallel::max_threads();
+  parallel::set_num_threads(static_cast<int>(state.range(0)));
+  FluidParameters<2> p;
+  p.l0 = 0.005;
+  p.dt = 2e-4;
+  p.ppe_tolerance = 1e-8;
+  FluidSolver<2> solver(scenes::dam_break<2>(0.25, 0.5, 1.0, 0.6, p.l0), p);
+  solver.advance_to(state.range(1) * 1e-3);
+  double solve = 0, total = 0, iterations = 0;
+  for (auto _ : state) {
+    solver.step();
+    solve += solver.last_timings().ppe_solve;
+    total += solver.last_timings().total();
+    iterations += solver.last_solve().iterations;
+  }
+  parallel::set_num_threads(saved);
+  const auto n = static_cast<double>(solver.particles().size());
+  state.counters["particles"] = n;
+  state.counters["particle-steps/s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["ppe_solve_share"] = solve / total;
+  state.counters["cg_iterations"] = iterations / static_cast<double>(state.iterations());
+}
+
+}  // namespace
+
+// /threads/start time in ms (the /1/0 case, from rest, is the CTest smoke run)
+BENCHMARK(dam_break_step)->Args({1, 0})->Args({1, 100})->Args({2, 100})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+BENCHMARK_MAIN();
