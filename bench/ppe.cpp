@@ -113,6 +113,7 @@ void solve_sizes(benchmark::internal::Benchmark* b) {
 BENCHMARK_TEMPLATE(assemble, 2)->Apply(assembly_sizes);
 BENCHMARK_TEMPLATE(assemble, 3)->Apply(assembly_sizes);
 BENCHMARK_TEMPLATE(solve, 2, JacobiCg)->Apply(solve_sizes);
+BENCHMARK_TEMPLATE(solve, 2, EigenJacobiCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 2, IncompleteCholeskyCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 3, JacobiCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 3, IncompleteCholeskyCg)->Apply(solve_sizes);

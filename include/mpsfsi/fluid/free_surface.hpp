@@ -9,6 +9,7 @@
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/kernels/detail/pair.hpp"
+#include "mpsfsi/kernels/lattice_constants.hpp"
 
 namespace mpsfsi {
 
@@ -27,6 +28,36 @@ struct NumberDensitySurface {
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t i = 0; i < static_cast<std::int64_t>(n.size()); ++i)
       surface[i] = (kinds[i] != ParticleKind::dummy && n[i] < beta * n0) ? 1 : 0;
+  }
+};
+
+// The test of Lee et al. 2011 (PNU-MPS): a particle is at the surface when n_i < beta n0 AND
+// it has fewer than count_ratio N0 neighbours within re, N0 being the count of a full lattice
+// neighbourhood. The count does not change when a disordered arrangement moves particles within
+// re, unlike n with the singular weight, so interior particles keep their pressure.
+struct NeighborCountSurface {
+  static constexpr double count_ratio = 0.85;
+
+  template <int Dim, class Scalar>
+  static void detect(const VecArray<Dim, Scalar>& x, const std::vector<ParticleKind>& kinds,
+                     const BasicNeighborList<Scalar>& list, const std::vector<Scalar>& n, Scalar n0, Scalar beta,
+                     Scalar l0, Scalar re, std::vector<std::uint8_t>& surface) {
+    const double full = static_cast<double>(ideal_neighbor_count<Dim>(l0, re));
+    surface.resize(n.size());
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n.size()); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (kinds[i] == ParticleKind::dummy || !(n[i] < beta * n0)) {
+        surface[i] = 0;
+        continue;
+      }
+      int count = 0;
+      for (Offset k = list.begin(i); k < list.end(i); ++k) {
+        const Vec<Dim, Scalar> r = x[static_cast<std::size_t>(list.indices[k])] - x[i];
+        count += detail::pair_distance(list, k, r) < re ? 1 : 0;
+      }
+      surface[i] = count < count_ratio * full ? 1 : 0;
+    }
   }
 };
 

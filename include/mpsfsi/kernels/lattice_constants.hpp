@@ -51,4 +51,17 @@ MpsConstants<Scalar> ideal_lattice_constants(Scalar l0, Scalar re) {
   return MpsConstants<Scalar>{l0, re, n0, wr2 / n0};
 }
 
+// Particles within re (strictly closer) of one particle of the ideal lattice, itself excluded.
+template <int Dim, class Scalar>
+int ideal_neighbor_count(Scalar l0, Scalar re) {
+  const int m = static_cast<int>(std::ceil(re / l0));
+  const int mz = (Dim == 3) ? m : 0;
+  int count = 0;
+  for (int a = -m; a <= m; ++a)
+    for (int b = -m; b <= m; ++b)
+      for (int c = -mz; c <= mz; ++c)
+        if ((a != 0 || b != 0 || c != 0) && l0 * std::sqrt(static_cast<Scalar>(a * a + b * b + c * c)) < re) ++count;
+  return count;
+}
+
 }  // namespace mpsfsi
