@@ -8,6 +8,11 @@ set(MPSFSI_INSTALL_CMAKEDIR "${CMAKE_INSTALL_DATADIR}/cmake/mpsfsi" CACHE STRING
 install(TARGETS mpsfsi EXPORT mpsfsiTargets)
 install(DIRECTORY include/ DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}" FILES_MATCHING PATTERN "*.hpp")
 install(EXPORT mpsfsiTargets NAMESPACE mpsfsi:: DESTINATION "${MPSFSI_INSTALL_CMAKEDIR}")
+if(MPSFSI_WITH_HYPRE)
+  install(TARGETS mpsfsi_hypre EXPORT mpsfsiHypreTargets)
+  install(EXPORT mpsfsiHypreTargets NAMESPACE mpsfsi:: DESTINATION "${MPSFSI_INSTALL_CMAKEDIR}")
+  install(FILES cmake/FindHYPRE.cmake DESTINATION "${MPSFSI_INSTALL_CMAKEDIR}")
+endif()
 
 configure_package_config_file(cmake/mpsfsiConfig.cmake.in
   "${PROJECT_BINARY_DIR}/mpsfsiConfig.cmake"

@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libnanoflann-dev # the library's dependencies
   doctest-dev                    # tests
   libbenchmark-dev               # micro-benchmarks
+  libhypre-dev                   # optional: BoomerAMG PPE solver (mpsfsi::hypre; brings MPI)
   python3 python3-matplotlib     # plot scripts of the examples (from issue 3 on)
 )
 
