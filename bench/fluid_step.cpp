@@ -9,11 +9,15 @@
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/fluid/fluid_solver.hpp"
 #include "mpsfsi/scenes/dam_break.hpp"
+#if defined(MPSFSI_BENCH_HYPRE)
+#include "mpsfsi/fluid/hypre_amg.hpp"
+#endif
 
 using namespace mpsfsi;
 
 namespace {
 
+template <class Policies>
 void dam_break_step(benchmark::State& state) {
   const int saved = parallel::max_threads();
   parallel::set_num_threads(static_cast<int>(state.range(0)));
@@ -21,7 +25,7 @@ void dam_break_step(benchmark::State& state) {
   p.l0 = 0.005;
   p.dt = 2e-4;
   p.ppe_tolerance = 1e-8;
-  FluidSolver<2> solver(scenes::dam_break<2>(0.25, 0.5, 1.0, 0.6, p.l0), p);
+  FluidSolver<2, Policies> solver(scenes::dam_break<2>(0.25, 0.5, 1.0, 0.6, p.l0), p);
   solver.advance_to(state.range(1) * 1e-3);
   double solve = 0, total = 0, iterations = 0;
   for (auto _ : state) {
@@ -41,6 +45,18 @@ void dam_break_step(benchmark::State& state) {
 }  // namespace
 
 // /threads/start time in ms (the /1/0 case, from rest, is the CTest smoke run)
-BENCHMARK(dam_break_step)->Args({1, 0})->Args({1, 100})->Args({2, 100})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_TEMPLATE(dam_break_step, FluidDefaults<2>)
+    ->Args({1, 0})
+    ->Args({1, 100})
+    ->Args({2, 100})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+#if defined(MPSFSI_BENCH_HYPRE)
+struct AmgPolicies : FluidDefaults<2> {
+  using linear_solver = HypreAmgCg;
+};
+BENCHMARK_TEMPLATE(dam_break_step, AmgPolicies)->Args({1, 100})->Args({2, 100})->Unit(benchmark::kMillisecond)->UseRealTime();
+#endif
 
 BENCHMARK_MAIN();
