@@ -57,6 +57,12 @@ struct PpeCase {
     source.resize(set.size());
     for (std::size_t i = 0; i < set.size(); ++i) source[i] = -1.0;  // uniform: lap P = -1
   }
+
+  PpeAssembler<KoshizukaWeight, Dim, double> ppe;
+  PpeMatrix a;
+  PpeVector b;
+
+  void assemble() { ppe.assemble(set.positions(), set.kinds(), surface, list, lap, source, a, b); }
 };
 
 template <int Dim>
@@ -64,19 +70,16 @@ void assemble(benchmark::State& state) {
   PpeCase<Dim> c(state.range(0));
   const int saved = parallel::max_threads();
   parallel::set_num_threads(static_cast<int>(state.range(1)));
-  PpeAssembler<KoshizukaWeight, Dim, double> ppe;
-  PpeMatrix a;
-  PpeVector b;
-  ppe.assemble(c.set.positions(), c.set.kinds(), c.surface, c.list, c.lap, c.source, a, b);  // warm-up
+  c.assemble();  // warm-up
   for (auto _ : state) {
-    ppe.assemble(c.set.positions(), c.set.kinds(), c.surface, c.list, c.lap, c.source, a, b);
-    benchmark::DoNotOptimize(a.valuePtr());
+    c.assemble();
+    benchmark::DoNotOptimize(c.a.valuePtr());
   }
   parallel::set_num_threads(saved);
-  state.counters["unknowns"] = static_cast<double>(ppe.num_unknowns());
-  state.counters["nnz/row"] = static_cast<double>(a.nonZeros()) / static_cast<double>(ppe.num_unknowns());
-  state.counters["rows/s"] =
-      benchmark::Counter(static_cast<double>(ppe.num_unknowns()), benchmark::Counter::kIsIterationInvariantRate);
+  const auto rows = static_cast<double>(c.ppe.num_unknowns());
+  state.counters["unknowns"] = rows;
+  state.counters["nnz/row"] = static_cast<double>(c.a.nonZeros()) / rows;
+  state.counters["rows/s"] = benchmark::Counter(rows, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 template <int Dim, class Solver>
@@ -84,10 +87,9 @@ void solve(benchmark::State& state) {
   PpeCase<Dim> c(state.range(0));
   const int saved = parallel::max_threads();
   parallel::set_num_threads(static_cast<int>(state.range(1)));
-  PpeAssembler<KoshizukaWeight, Dim, double> ppe;
-  PpeMatrix a;
-  PpeVector b;
-  ppe.assemble(c.set.positions(), c.set.kinds(), c.surface, c.list, c.lap, c.source, a, b);
+  c.assemble();
+  const PpeMatrix& a = c.a;
+  const PpeVector& b = c.b;
   Solver solver;
   SolveReport report;
   for (auto _ : state) {
@@ -96,7 +98,7 @@ void solve(benchmark::State& state) {
     benchmark::DoNotOptimize(x.data());
   }
   parallel::set_num_threads(saved);
-  state.counters["unknowns"] = static_cast<double>(ppe.num_unknowns());
+  state.counters["unknowns"] = static_cast<double>(c.ppe.num_unknowns());
   state.counters["iterations"] = report.iterations;
   state.counters["converged"] = report.converged ? 1 : 0;
 }

@@ -4,33 +4,17 @@
 #include <vector>
 
 #include "mpsfsi/fluid/linear_solver.hpp"
+#include "support/poisson.hpp"
 
 using namespace mpsfsi;
 
 namespace {
 
-// The 2D five-point Poisson matrix on an m x m grid with Dirichlet boundaries (SPD), in the
-// PPE's row-major CSR. Incomplete Cholesky is not exact on it, unlike on a tridiagonal matrix.
-PpeMatrix poisson_2d(int m) {
-  std::vector<Eigen::Triplet<double>> t;
-  auto id = [m](int i, int j) { return i * m + j; };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) {
-      t.emplace_back(id(i, j), id(i, j), 4.0);
-      if (i > 0) t.emplace_back(id(i, j), id(i - 1, j), -1.0);
-      if (i + 1 < m) t.emplace_back(id(i, j), id(i + 1, j), -1.0);
-      if (j > 0) t.emplace_back(id(i, j), id(i, j - 1), -1.0);
-      if (j + 1 < m) t.emplace_back(id(i, j), id(i, j + 1), -1.0);
-    }
-  PpeMatrix a(m * m, m * m);
-  a.setFromTriplets(t.begin(), t.end());
-  return a;
-}
 
 template <class Solver>
 void check_solver() {
   const int m = 30, n = m * m;
-  const PpeMatrix a = poisson_2d(m);
+  const PpeMatrix a = test::poisson_2d(m);
   // A smooth exact solution; b = A x.
   PpeVector exact(n);
   for (int i = 0; i < n; ++i) exact[i] = std::sin(0.05 * i) + 0.01 * i;
@@ -59,7 +43,7 @@ TEST_CASE("fluid.linear_solver: Eigen Jacobi CG, the reference") { check_solver<
 TEST_CASE("fluid.linear_solver: incomplete Cholesky CG") { check_solver<IncompleteCholeskyCg>(); }
 
 TEST_CASE("fluid.linear_solver: a zero right-hand side gives zero") {
-  const PpeMatrix a = poisson_2d(4);
+  const PpeMatrix a = test::poisson_2d(4);
   PpeVector x = PpeVector::Ones(16);
   JacobiCg solver;
   const SolveReport r = solver.solve(a, PpeVector::Zero(16), x, 1e-8, 100);

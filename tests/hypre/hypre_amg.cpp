@@ -2,37 +2,18 @@
 // BoomerAMG-preconditioned CG (built only when hypre is found).
 #include <doctest/doctest.h>
 
-#include <vector>
+#include <cmath>
 
 #include "mpsfsi/fluid/hypre_amg.hpp"
+#include "support/poisson.hpp"
 
 using namespace mpsfsi;
-
-namespace {
-
-PpeMatrix poisson_2d(int m) {
-  std::vector<Eigen::Triplet<double>> t;
-  auto id = [m](int i, int j) { return i * m + j; };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) {
-      t.emplace_back(id(i, j), id(i, j), 4.0);
-      if (i > 0) t.emplace_back(id(i, j), id(i - 1, j), -1.0);
-      if (i + 1 < m) t.emplace_back(id(i, j), id(i + 1, j), -1.0);
-      if (j > 0) t.emplace_back(id(i, j), id(i, j - 1), -1.0);
-      if (j + 1 < m) t.emplace_back(id(i, j), id(i, j + 1), -1.0);
-    }
-  PpeMatrix a(m * m, m * m);
-  a.setFromTriplets(t.begin(), t.end());
-  return a;
-}
-
-}  // namespace
 
 TEST_SUITE("hypre") {
 
 TEST_CASE("hypre.amg: BoomerAMG-PCG matches Jacobi-CG in far fewer iterations") {
   const int m = 100;
-  const PpeMatrix a = poisson_2d(m);
+  const PpeMatrix a = test::poisson_2d(m);
   PpeVector exact(m * m);
   for (int i = 0; i < m * m; ++i) exact[i] = std::sin(0.01 * i) + 1.0;
   const PpeVector b = a * exact;
