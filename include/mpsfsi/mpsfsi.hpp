@@ -21,9 +21,20 @@
 #include "mpsfsi/kernels/number_density.hpp"
 #include "mpsfsi/kernels/weight.hpp"
 
+#include "mpsfsi/fluid/collision.hpp"
+#include "mpsfsi/fluid/fluid_parameters.hpp"
+#include "mpsfsi/fluid/fluid_solver.hpp"
+#include "mpsfsi/fluid/free_surface.hpp"
+#include "mpsfsi/fluid/linear_solver.hpp"
+#include "mpsfsi/fluid/ppe.hpp"
+// mpsfsi/fluid/hypre_amg.hpp is left out: it needs hypre and MPI (target mpsfsi::hypre).
+
 #include "mpsfsi/io/csv_writer.hpp"
 #include "mpsfsi/io/progress.hpp"
 #include "mpsfsi/io/pvd_writer.hpp"
 #include "mpsfsi/io/vtu_writer.hpp"
 
+#include "mpsfsi/core/filter_neighbors.hpp"
+#include "mpsfsi/scenes/dam_break.hpp"
 #include "mpsfsi/scenes/lattice.hpp"
+#include "mpsfsi/scenes/tank.hpp"
