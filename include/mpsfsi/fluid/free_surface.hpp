@@ -35,6 +35,9 @@ struct NumberDensitySurface {
 // it has fewer than count_ratio N0 neighbours within re, N0 being the count of a full lattice
 // neighbourhood. The count does not change when a disordered arrangement moves particles within
 // re, unlike n with the singular weight, so interior particles keep their pressure.
+// Measured: the 2D hydrostatic tank is as good as with NumberDensitySurface (worst particle
+// 2.3 %), but in the 2D dam break (l0 = a/50, dt = 2e-4 s) a splash particle reaches 5 m/s by
+// t = 0.19 s, which the default detector does not allow; so it is not the default.
 struct NeighborCountSurface {
   static constexpr double count_ratio = 0.85;
 
