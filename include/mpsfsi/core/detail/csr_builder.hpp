@@ -42,7 +42,6 @@ class CsrSink {
     if (keep_) sq_[len_] = squared;
     len_ += accept ? 1 : 0;
   }
-  bool keeps_distances() const { return keep_; }
   std::size_t length() const { return len_; }
 
  private:
