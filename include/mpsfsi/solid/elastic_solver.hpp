@@ -1,0 +1,366 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mpsfsi/core/cell_list_search.hpp"
+#include "mpsfsi/core/error.hpp"
+#include "mpsfsi/core/parallel.hpp"
+#include "mpsfsi/core/particle_set.hpp"
+#include "mpsfsi/kernels/lattice_constants.hpp"
+#include "mpsfsi/kernels/weight.hpp"
+#include "mpsfsi/solid/bonds.hpp"
+#include "mpsfsi/solid/contact.hpp"
+#include "mpsfsi/solid/corrected_total_lagrangian.hpp"
+#include "mpsfsi/solid/deformation.hpp"
+#include "mpsfsi/solid/hwang_model.hpp"
+#include "mpsfsi/solid/solid_parameters.hpp"
+
+namespace mpsfsi {
+
+// The policy bundle of ElasticSolver. Override one entry by deriving:
+//   struct MyPolicies : SolidDefaults<2> { using contact = NoContact; };
+template <int Dim>
+struct SolidDefaults {
+  using weight = KoshizukaWeight;
+  using stress_model = CorrectedTotalLagrangian<Dim, double>;
+  using contact = PenaltyContact<Dim, double>;
+};
+
+// The paper's own structure model (eqs 16-17 and rotation, eq 8) in place of the default.
+template <int Dim>
+struct PaperSolidPolicies : SolidDefaults<Dim> {
+  using stress_model = HwangModel<Dim, double>;
+};
+
+// How a particle's motion is constrained.
+enum class Constraint : std::int32_t {
+  free = 0,
+  prescribed = 1,  // moves with a velocity the user sets (zero: clamped)
+  support = 2,     // no velocity along a given direction (a simple support / roller)
+};
+
+// Elastic solid on fixed initial bonds (total Lagrangian, physics-notes section 3), integrated
+// explicitly with velocity Verlet (kick-drift-kick, symplectic):
+//   v^{n+1/2} = v^n + dt/2 a^n,   x^{n+1} = x^n + dt v^{n+1/2},   v^{n+1} = v^{n+1/2} + dt/2 a^{n+1},
+//   m a = f_internal(x) + f_contact(x) + f_external + m g   (eq 16 with f_FtoS = f_external / m).
+// The stress model (default: corrected total-Lagrangian SVK; PaperSolidPolicies: the paper's
+// eqs 16-17 with rotation) and the contact model are policies. Particles with different body ids
+// never share bonds and interact through contact only (supports, indenters, fragments).
+template <int Dim, class Policies = SolidDefaults<Dim>>
+class ElasticSolver {
+  using Weight = typename Policies::weight;
+  static_assert(check_weight<Weight>());
+
+ public:
+  using vec_type = Vec<Dim, double>;
+  using mat_type = Mat<Dim, double>;
+  using parameters_type = SolidParameters<Dim, double>;
+  using stress_model_type = typename Policies::stress_model;
+  using contact_type = typename Policies::contact;
+
+  // Takes the particles (all become ParticleKind::solid; their positions are the reference
+  // configuration, their velocities the initial ones), the parameters and optionally a body id
+  // per particle (default: one body). Throws InvalidInput on an empty set, non-finite values,
+  // overlapping particles (closer than l0/2) or missing/invalid parameters.
+  ElasticSolver(ParticleSet<Dim> particles, parameters_type params, std::vector<std::int32_t> body = {})
+      : p_(std::move(params)), set_(std::move(particles)) {
+    p_.validate();
+    if (set_.empty()) detail::throw_invalid("ElasticSolver", "the particle set is empty");
+    set_.validate();
+    const std::size_t n = set_.size();
+    if (body.empty()) body.assign(n, 0);
+    if (body.size() != n)
+      detail::throw_invalid("ElasticSolver", "got " + std::to_string(body.size()) + " body ids for " +
+                                                 std::to_string(n) + " particles");
+    std::fill(set_.kinds().begin(), set_.kinds().end(), ParticleKind::solid);
+    check_overlaps();
+    if (p_.dt > p_.max_stable_dt()) {
+      const std::string what = "dt = " + std::to_string(p_.dt) + " s exceeds the stability limit " +
+                               std::to_string(p_.max_stable_dt()) + " s (max_courant l0 / c, c = " +
+                               std::to_string(p_.signal_speed()) + " m/s)";
+      if (!p_.warn_only_on_unstable_dt) detail::throw_invalid("ElasticSolver", what);
+      std::cerr << "warning: ElasticSolver: " << what << '\n';
+    }
+    reference_ = set_.positions();
+    body_ = set_.template add_field<std::int32_t>("body");
+    set_.field(body_) = body;
+    constraint_field_ = set_.template add_field<std::int32_t>("constraint");
+    displacement_ = set_.template add_field<vec_type>("displacement");
+    stress_field_ = set_.template add_field<mat_type>("stress");
+    damage_ = set_.template add_field<double>("damage");
+    bonds_.template build<Weight>(reference_, body, p_.re());
+    const auto lattice = ideal_lattice_constants<Dim, Weight>(p_.l0, p_.re());
+    context_.lame = p_.lame();
+    context_.density = p_.density;
+    context_.l0 = p_.l0;
+    context_.volume = std::pow(p_.l0, Dim);
+    context_.n0 = lattice.n0;
+    context_.lap_lambda = lattice.lambda;
+    mass_ = p_.density * context_.volume;
+    model_.initialize(bonds_, context_);
+    contact_.initialize(n, p_.contact_distance(), p_.contact_stiffness());
+    constraint_.assign(n, Constraint::free);
+    prescribed_velocity_.assign(n, vec_type::Zero());
+    external_.assign(n, vec_type::Zero());
+    compute_acceleration(set_.positions(), force_, acceleration_);
+  }
+
+  // --- Boundary conditions (may be changed between steps) ---
+
+  // Fixes particle i where it is (prescribed velocity zero).
+  void clamp(std::size_t i) { prescribe_velocity(i, vec_type::Zero()); }
+
+  // Particle i moves with velocity v from now on (an indenter, a moving clamp).
+  void prescribe_velocity(std::size_t i, const vec_type& v) {
+    check_index(i, "prescribe_velocity");
+    if (!v.allFinite()) detail::throw_invalid("ElasticSolver::prescribe_velocity", "velocity is not finite");
+    set_constraint(i, Constraint::prescribed);
+    prescribed_velocity_[i] = v;
+    set_.velocities()[i] = v;
+  }
+
+  // Particle i cannot move along `normal` (a simple support: only a reaction along normal).
+  void support(std::size_t i, const vec_type& normal) {
+    check_index(i, "support");
+    if (!(normal.norm() > 0) || !normal.allFinite())
+      detail::throw_invalid("ElasticSolver::support", "the support normal must be a finite non-zero vector");
+    set_constraint(i, Constraint::support);
+    prescribed_velocity_[i] = normal.normalized();  // the unit normal, for supports
+    auto& v = set_.velocities()[i];
+    v -= v.dot(prescribed_velocity_[i]) * prescribed_velocity_[i];
+  }
+
+  void release(std::size_t i) {
+    check_index(i, "release");
+    set_constraint(i, Constraint::free);
+  }
+
+  Constraint constraint(std::size_t i) const { return constraint_[i]; }
+
+  // External force per particle (N, per unit thickness in 2D); kept until changed. The FSI load.
+  VecArray<Dim, double>& external_force() { return external_; }
+
+  // --- Time stepping ---
+
+  // One step of the automatic or fixed dt.
+  void step() { step(choose_dt()); }
+
+  // One step of the given dt (sub-stepping inside a fluid step). Throws InvalidInput if dt is
+  // above the stability limit and SimulationError (step, time, particle) on a blow-up, leaving
+  // positions and velocities as they were before the step.
+  void step(double dt) {
+    if (!(dt > 0) || !std::isfinite(dt)) detail::throw_invalid("ElasticSolver::step", "dt must be positive");
+    if (dt > p_.max_stable_dt() * (1 + 1e-12) && !p_.warn_only_on_unstable_dt)
+      detail::throw_invalid("ElasticSolver::step", "dt = " + std::to_string(dt) + " s exceeds the stability limit " +
+                                                       std::to_string(p_.max_stable_dt()) + " s");
+    const std::size_t n = set_.size();
+    const auto& x = set_.positions();
+    const auto& v = set_.velocities();
+    const double decay = std::exp(-0.5 * p_.damping * dt);
+    x_next_.resize(n);
+    v_next_.resize(n);
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      v_next_[i] = constrained(i, decay * v[i] + 0.5 * dt * acceleration_[i]);
+      x_next_[i] = x[i] + dt * v_next_[i];
+    }
+    model_.kick(0.5 * dt);
+    model_.drift(dt);
+    compute_acceleration(x_next_, force_next_, acceleration_next_);
+    const double limit = p_.blowup_speed_factor * p_.p_wave_speed();
+    long long bad = -1;
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      v_next_[i] = constrained(i, decay * (v_next_[i] + 0.5 * dt * acceleration_next_[i]));
+      if (!(v_next_[i].norm() <= limit) || !x_next_[i].allFinite()) {
+        MPSFSI_OMP(atomic write)
+        bad = static_cast<long long>(i);
+      }
+    }
+    if (bad >= 0) {
+      const auto i = static_cast<std::size_t>(bad);
+      throw SimulationError("ElasticSolver: blow-up at step " + std::to_string(step_count_ + 1) + " (t = " +
+                                std::to_string(time_ + dt) + "): particle " + std::to_string(i) + " (id " +
+                                std::to_string(set_.ids()[i]) + ") would move at " +
+                                std::to_string(v_next_[i].norm()) + " m/s, limit " + std::to_string(limit) +
+                                " m/s (the P-wave speed times blowup_speed_factor)",
+                            step_count_ + 1, time_ + dt, bad);
+    }
+    model_.kick(0.5 * dt);
+    set_.positions().swap(x_next_);
+    set_.velocities().swap(v_next_);
+    force_.swap(force_next_);
+    acceleration_.swap(acceleration_next_);
+    time_ += dt;
+    last_dt_ = dt;
+    ++step_count_;
+    stresses_current_ = false;
+  }
+
+  // Steps until the simulated time reaches end_time.
+  void advance_to(double end_time) {
+    while (time_ < end_time - 1e-12 * std::max(1.0, std::abs(end_time))) step();
+  }
+
+  // Advances by `duration` in the fewest equal sub-steps no longer than the solver's dt (FSI:
+  // one fluid step of the structure). Returns the number of sub-steps.
+  int advance_by(double duration) {
+    if (!(duration > 0)) detail::throw_invalid("ElasticSolver::advance_by", "duration must be positive");
+    const int substeps = std::max(1, static_cast<int>(std::ceil(duration / choose_dt() - 1e-9)));
+    for (int k = 0; k < substeps; ++k) step(duration / substeps);
+    return substeps;
+  }
+
+  double dt() const { return choose_dt(); }
+  double last_dt() const { return last_dt_; }
+  double time() const { return time_; }
+  long long step_count() const { return step_count_; }
+
+  // --- State and diagnostics ---
+
+  const ParticleSet<Dim>& particles() const { return set_; }
+  ParticleSet<Dim>& particles() { return set_; }
+  const VecArray<Dim, double>& reference_positions() const { return reference_; }
+  const parameters_type& parameters() const { return p_; }
+  const BondList<Dim, double>& bonds() const { return bonds_; }
+  stress_model_type& stress_model() { return model_; }
+  const contact_type& contact() const { return contact_; }
+  double particle_mass() const { return mass_; }
+  double particle_volume() const { return context_.volume; }
+
+  // Cauchy stress per particle at the current positions (computed once per step on demand).
+  const MatArray<Dim, double>& stresses() {
+    if (!stresses_current_) {
+      model_.stresses(set_.positions(), bonds_, set_.field(stress_field_));
+      stresses_current_ = true;
+    }
+    return set_.field(stress_field_);
+  }
+
+  // The particle set with its output fields (displacement, stress, damage, body, constraint)
+  // brought up to date, ready for write_vtu.
+  const ParticleSet<Dim>& output() {
+    stresses();
+    auto& u = set_.field(displacement_);
+    auto& damage = set_.field(damage_);
+    for (std::size_t i = 0; i < set_.size(); ++i) {
+      u[i] = set_.positions()[i] - reference_[i];
+      damage[i] = bonds_.damage(i);
+    }
+    return set_;
+  }
+
+  // Internal (elastic + contact) force on particle i at the current positions.
+  const vec_type& internal_force(std::size_t i) const { return force_[i]; }
+
+  // Force the constraint exerts on particle i: what keeps a prescribed particle at its velocity
+  // or a supported one off its normal (zero for free particles). The sum over an indenter's
+  // particles, negated, is the load it applies.
+  vec_type reaction(std::size_t i) const {
+    const vec_type applied = force_[i] + external_[i] + mass_ * p_.gravity;
+    switch (constraint_[i]) {
+      case Constraint::prescribed: return -applied;
+      case Constraint::support: return -applied.dot(prescribed_velocity_[i]) * prescribed_velocity_[i];
+      default: return vec_type::Zero();
+    }
+  }
+
+  double kinetic_energy() const {
+    double e = 0;
+    for (const auto& v : set_.velocities()) e += 0.5 * mass_ * v.squaredNorm();
+    return e;
+  }
+  // Elastic energy of the stress model plus the contact springs.
+  double strain_energy() const {
+    return model_.strain_energy(set_.positions(), bonds_) + contact_.energy(set_.positions(), bonds_);
+  }
+  double gravity_energy() const {
+    double e = 0;
+    for (const auto& x : set_.positions()) e -= mass_ * p_.gravity.dot(x);
+    return e;
+  }
+  double total_energy() const { return kinetic_energy() + strain_energy() + gravity_energy(); }
+
+  // Directed bonds evaluated per force evaluation (the benchmark's unit of work).
+  std::size_t bond_evaluations_per_step() const { return bonds_.num_bonds(); }
+
+ private:
+  double choose_dt() const { return p_.dt > 0 ? p_.dt : p_.stable_dt(); }
+
+  void check_index(std::size_t i, const char* what) const {
+    if (i >= set_.size())
+      detail::throw_invalid(std::string("ElasticSolver::") + what,
+                            "particle " + std::to_string(i) + " out of range (" + std::to_string(set_.size()) + ")");
+  }
+
+  void set_constraint(std::size_t i, Constraint c) {
+    constraint_[i] = c;
+    set_.field(constraint_field_)[i] = static_cast<std::int32_t>(c);
+  }
+
+  vec_type constrained(std::size_t i, const vec_type& v) const {
+    switch (constraint_[i]) {
+      case Constraint::prescribed: return prescribed_velocity_[i];
+      case Constraint::support: return v - v.dot(prescribed_velocity_[i]) * prescribed_velocity_[i];
+      default: return v;
+    }
+  }
+
+  // m a = f_internal + f_contact + f_external + m g.
+  void compute_acceleration(const VecArray<Dim, double>& x, VecArray<Dim, double>& force, VecArray<Dim, double>& a) {
+    model_.internal_forces(x, bonds_, force);
+    contact_.add_forces(x, bonds_, force);
+    a.resize(x.size());
+    const double inv_m = 1 / mass_;
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      a[i] = inv_m * (force[i] + external_[i]) + p_.gravity;
+    }
+  }
+
+  void check_overlaps() const {
+    const double limit = 0.5 * p_.l0;
+    CellListSearch<Dim, double> search(limit);
+    search.build(set_.positions());
+    BasicNeighborList<double> close;
+    search.self_query(set_.positions(), close, QueryOptions{true});
+    for (std::size_t i = 0; i < set_.size(); ++i)
+      for (Offset k = close.begin(i); k < close.end(i); ++k)
+        if (close.distances[static_cast<std::size_t>(k)] < limit * (1 - 1e-9))
+          detail::throw_invalid("ElasticSolver", "particles " + std::to_string(i) + " and " +
+                                                     std::to_string(close.indices[static_cast<std::size_t>(k)]) +
+                                                     " overlap (closer than l0/2)");
+  }
+
+  parameters_type p_;
+  ParticleSet<Dim> set_;
+  VecArray<Dim, double> reference_;
+  BondList<Dim, double> bonds_;
+  SolidModelContext<Dim, double> context_;
+  stress_model_type model_;
+  contact_type contact_;
+  double mass_ = 0;
+  FieldHandle<std::int32_t> body_, constraint_field_;
+  FieldHandle<vec_type> displacement_;
+  FieldHandle<mat_type> stress_field_;
+  FieldHandle<double> damage_;
+  std::vector<Constraint> constraint_;
+  VecArray<Dim, double> prescribed_velocity_;  // the velocity, or the unit normal of a support
+  VecArray<Dim, double> external_, force_, acceleration_;
+  VecArray<Dim, double> x_next_, v_next_, force_next_, acceleration_next_;
+  double time_ = 0, last_dt_ = 0;
+  long long step_count_ = 0;
+  bool stresses_current_ = false;
+};
+
+}  // namespace mpsfsi
