@@ -47,7 +47,6 @@ class CorrectedTotalLagrangian {
   void initialize(const BondList<Dim, Scalar>& bonds, const SolidModelContext<Dim, Scalar>& context) {
     context_ = context;
     fit_.build(bonds, context.l0);
-    const std::size_t n = bonds.num_particles();
   }
 
   // Refits the particles whose bonds were cut.

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// ElasticSolver throughput (issue 4): one whole step of a block of material with every particle
+// free and the first-mode velocity field of a clamped plate (so every bond is stretched), in
+// bond evaluations per second: directed bonds (each pair counted from both ends) times steps.
+// Arguments: /particles along the long side/threads. Target: >= 2e8 bond evaluations per
+// second per core in 2D, double precision.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "mpsfsi/core/parallel.hpp"
+#include "mpsfsi/scenes/oscillating_plate.hpp"
+#include "mpsfsi/solid/elastic_solver.hpp"
+
+using namespace mpsfsi;
+
+namespace {
+
+template <int Dim, class Policies>
+void solid_step(benchmark::State& state) {
+  const int saved = parallel::max_threads();
+  parallel::set_num_threads(static_cast<int>(state.range(1)));
+  // The GMS plate scaled so that it has range(0) particles along its length and L/H = 10.
+  scenes::OscillatingPlate plate;
+  const double l0 = plate.length / static_cast<double>(state.range(0));
+  plate.thickness = plate.width = plate.length / 10;
+  std::vector<std::size_t> clamped;
+  std::size_t tip = 0;
+  SolidParameters<Dim> p;
+  p.l0 = l0;
+  p.density = plate.density;
+  p.youngs_modulus = plate.youngs_modulus;
+  p.poisson_ratio = plate.poisson_ratio;
+  ElasticSolver<Dim, Policies> solver(plate.particles<Dim>(l0, 4, clamped, tip), p);
+  for (const auto i : clamped) solver.clamp(i);
+  for (int k = 0; k < 10; ++k) solver.step();
+  for (auto _ : state) solver.step();
+  parallel::set_num_threads(saved);
+  const auto bonds = static_cast<double>(solver.bond_evaluations_per_step());
+  state.counters["particles"] = static_cast<double>(solver.particles().size());
+  state.counters["bonds/particle"] = bonds / static_cast<double>(solver.particles().size());
+  state.counters["bond_evals/s"] = benchmark::Counter(bonds, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["bond_evals/s/thread"] =
+      benchmark::Counter(bonds / static_cast<double>(state.range(1)), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+}  // namespace
+
+// 2D: 10 x 100 .. 40 x 400 particles; 3D: 10 x 10 x 100 (arguments /length/threads).
+BENCHMARK_TEMPLATE(solid_step, 2, SolidDefaults<2>)
+    ->Args({100, 1})
+    ->Args({400, 1})
+    ->Args({400, 2})
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK_TEMPLATE(solid_step, 2, PaperSolidPolicies<2>)->Args({400, 1})->Args({400, 2})->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK_TEMPLATE(solid_step, 3, SolidDefaults<3>)->Args({100, 1})->Args({100, 2})->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK_MAIN();
