@@ -169,7 +169,7 @@ double run_rigid_spin() {
 
 TEST_SUITE("verification.solid") {
 
-TEST_CASE("oscillating plate 2D, H/l0 = 10, ten periods") {
+TEST_CASE("oscillating plate 2D at H/l0 = 10 over ten periods") {
   const double reference = scenes::OscillatingPlate{}.period(true);
   const auto r = run_plate<2, SolidDefaults<2>>(10, 10.0);
   MESSAGE("plate 2D H/l0=10 (" << r.particles << " particles): T = " << r.period << " s vs " << reference
