@@ -13,6 +13,8 @@
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/particle_set.hpp"
+#include "mpsfsi/fracture/crack_plane.hpp"
+#include "mpsfsi/fracture/failure_criteria.hpp"
 #include "mpsfsi/kernels/lattice_constants.hpp"
 #include "mpsfsi/kernels/weight.hpp"
 #include "mpsfsi/solid/bonds.hpp"
@@ -31,6 +33,13 @@ struct SolidDefaults {
   using weight = KoshizukaWeight;
   using stress_model = CorrectedTotalLagrangian<Dim, double>;
   using contact = PenaltyContact<Dim, double>;
+  using failure = NoFailure;
+};
+
+// Brittle solid: the default models with the maximum principal stress criterion (eq 27).
+template <int Dim>
+struct BrittleSolidPolicies : SolidDefaults<Dim> {
+  using failure = MaxPrincipalStress;
 };
 
 // The paper's own structure model (eqs 16-17 and rotation, eq 8) in place of the default.
@@ -64,6 +73,7 @@ class ElasticSolver {
   using parameters_type = SolidParameters<Dim, double>;
   using stress_model_type = typename Policies::stress_model;
   using contact_type = typename Policies::contact;
+  using failure_type = typename Policies::failure;
 
   // Takes the particles (all become ParticleKind::solid; their positions are the reference
   // configuration, their velocities the initial ones), the parameters and optionally a body id
@@ -79,6 +89,8 @@ class ElasticSolver {
     if (body.size() != n)
       detail::throw_invalid("ElasticSolver", "got " + std::to_string(body.size()) + " body ids for " +
                                                  std::to_string(n) + " particles");
+    if (failure_type::enabled && std::isinf(p_.tensile_strength))
+      detail::throw_invalid("ElasticSolver", "the failure criterion needs tensile_strength (sigma_f), which is not set");
     std::fill(set_.kinds().begin(), set_.kinds().end(), ParticleKind::solid);
     check_overlaps();
     if (p_.dt > p_.max_stable_dt()) {
@@ -95,6 +107,7 @@ class ElasticSolver {
     displacement_ = set_.template add_field<vec_type>("displacement");
     stress_field_ = set_.template add_field<mat_type>("stress");
     damage_ = set_.template add_field<double>("damage");
+    principal_ = set_.template add_field<double>("max_principal_stress");
     bonds_.template build<Weight>(reference_, body, p_.re());
     const auto lattice = ideal_lattice_constants<Dim, Weight>(p_.l0, p_.re());
     context_.lame = p_.lame();
@@ -204,6 +217,26 @@ class ElasticSolver {
     last_dt_ = dt;
     ++step_count_;
     stresses_current_ = false;
+    if constexpr (failure_type::enabled) {
+      if (apply_failure()) compute_acceleration(set_.positions(), force_, acceleration_);
+    }
+  }
+
+  // Cuts the bonds across a crack plane through particle c with the given normal (eqs 34-35, see
+  // cut_bonds_across_plane): a notch or pre-crack, or what a failing particle does. Returns the
+  // number of bonds (pairs) cut.
+  std::size_t impose_crack(std::size_t c, const vec_type& normal) {
+    check_index(c, "impose_crack");
+    if (!(normal.norm() > 0) || !normal.allFinite())
+      detail::throw_invalid("ElasticSolver::impose_crack", "the crack normal must be a finite non-zero vector");
+    touched_.clear();
+    const std::size_t cut = cut_bonds_across_plane(bonds_, set_.positions(), c, vec_type(normal.normalized()),
+                                                   p_.crack_half_width(), p_.re(), touched_, scratch_);
+    if (cut > 0) {
+      bonds_changed();
+      compute_acceleration(set_.positions(), force_, acceleration_);
+    }
+    return cut;
   }
 
   // Steps until the simulated time reaches end_time.
@@ -252,9 +285,13 @@ class ElasticSolver {
     stresses();
     auto& u = set_.field(displacement_);
     auto& damage = set_.field(damage_);
+    auto& principal = set_.field(principal_);
+    const auto& sigma = set_.field(stress_field_);
     for (std::size_t i = 0; i < set_.size(); ++i) {
       u[i] = set_.positions()[i] - reference_[i];
       damage[i] = bonds_.damage(i);
+      vec_type direction;
+      principal[i] = MaxPrincipalStress::principal<Dim, double>(sigma[i], direction);
     }
     return set_;
   }
@@ -289,6 +326,12 @@ class ElasticSolver {
     return e;
   }
   double total_energy() const { return kinetic_energy() + strain_energy() + gravity_energy(); }
+
+  // Fracture record: bonds (pairs) cut so far, particle failures so far (a particle counts each
+  // step it fails), and the time of the first failure (negative if none yet).
+  std::size_t cut_bonds() const { return bonds_.num_cut(); }
+  std::size_t failure_events() const { return failure_events_; }
+  double first_failure_time() const { return first_failure_time_; }
 
   // Directed bonds evaluated per force evaluation (the benchmark's unit of work).
   std::size_t bond_evaluations_per_step() const { return bonds_.num_bonds(); }
@@ -328,6 +371,50 @@ class ElasticSolver {
     }
   }
 
+  // Eq 27 at every particle; each failing particle, strongest first, cuts the bonds across its
+  // crack plane. Returns whether any bond was cut (the forces are then recomputed).
+  bool apply_failure() {
+    const auto& sigma = stresses();
+    const std::size_t n = set_.size();
+    failing_.clear();
+    const double strength = p_.tensile_strength;
+    MPSFSI_OMP(parallel)
+    {
+      std::vector<std::pair<double, std::size_t>> mine;
+      MPSFSI_OMP(for schedule(static) nowait)
+      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
+        if (constraint_[i] == Constraint::prescribed || bonds_.intact_count(i) == 0) continue;
+        vec_type direction;
+        const double s1 = failure_type::template principal<Dim, double>(sigma[i], direction);
+        if (s1 >= strength) mine.emplace_back(s1, i);
+      }
+      MPSFSI_OMP(critical)
+      failing_.insert(failing_.end(), mine.begin(), mine.end());
+    }
+    if (failing_.empty()) return false;
+    std::sort(failing_.begin(), failing_.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
+    touched_.clear();
+    std::size_t cut = 0;
+    for (const auto& [s1, i] : failing_) {
+      vec_type direction;
+      failure_type::template principal<Dim, double>(sigma[i], direction);
+      cut += cut_bonds_across_plane(bonds_, set_.positions(), i, direction, p_.crack_half_width(), p_.re(), touched_, scratch_);
+      ++failure_events_;
+      if (first_failure_time_ < 0) first_failure_time_ = time_;
+    }
+    if (cut == 0) return false;
+    bonds_changed();
+    return true;
+  }
+
+  void bonds_changed() {
+    std::sort(touched_.begin(), touched_.end());
+    touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
+    model_.bonds_changed(bonds_, touched_);
+    stresses_current_ = false;
+  }
+
   void check_overlaps() const {
     const double limit = 0.5 * p_.l0;
     CellListSearch<Dim, double> search(limit);
@@ -353,7 +440,7 @@ class ElasticSolver {
   FieldHandle<std::int32_t> body_, constraint_field_;
   FieldHandle<vec_type> displacement_;
   FieldHandle<mat_type> stress_field_;
-  FieldHandle<double> damage_;
+  FieldHandle<double> damage_, principal_;
   std::vector<Constraint> constraint_;
   VecArray<Dim, double> prescribed_velocity_;  // the velocity, or the unit normal of a support
   VecArray<Dim, double> external_, force_, acceleration_;
@@ -361,6 +448,10 @@ class ElasticSolver {
   double time_ = 0, last_dt_ = 0;
   long long step_count_ = 0;
   bool stresses_current_ = false;
+  std::vector<std::pair<double, std::size_t>> failing_;
+  std::vector<std::size_t> touched_, scratch_;
+  std::size_t failure_events_ = 0;
+  double first_failure_time_ = -1;
 };
 
 }  // namespace mpsfsi

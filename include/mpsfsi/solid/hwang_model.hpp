@@ -54,6 +54,15 @@ class HwangModel {
     strain_.assign(n, 0);
   }
 
+  // Refits the particles whose bonds were cut and updates their reference number density.
+  void bonds_changed(const BondList<Dim, Scalar>& bonds, const std::vector<std::size_t>& particles) {
+    for (const std::size_t i : particles) {
+      fit_.rebuild(bonds, i);
+      own_n0_[i] = 0;
+      for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) own_n0_[i] += bonds.beta(b) * bonds.r0(b).squaredNorm();
+    }
+  }
+
   void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds,
                        VecArray<Dim, Scalar>& force) {
     const auto n = static_cast<std::int64_t>(x.size());

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "mpsfsi/core/error.hpp"
@@ -50,6 +51,11 @@ struct SolidParameters {
   // material: its frequency sqrt(k/m) = sqrt(ratio E/rho)/l0, which enters the stable dt).
   Scalar contact_distance_ratio = Scalar(1.0);
   Scalar contact_stiffness_ratio = Scalar(1.0);
+  // Brittle failure (used only when the failure policy is not NoFailure): tensile strength
+  // sigma_f (required then) and the crack's half-width Cw l0 along the plane (eq 35), with
+  // Cw = crack_width_ratio, 0 selecting sqrt(d)/2; l0/2 <= Cw l0 <= re.
+  Scalar tensile_strength = std::numeric_limits<Scalar>::infinity();
+  Scalar crack_width_ratio = 0;
   // A blow-up is declared when a particle moves faster than this multiple of the P-wave speed.
   Scalar blowup_speed_factor = Scalar(1);
 
@@ -77,6 +83,10 @@ struct SolidParameters {
   Scalar stable_dt() const { return courant * l0 / signal_speed(); }
   Scalar max_stable_dt() const { return max_courant * l0 / signal_speed(); }
 
+  Scalar crack_half_width() const {
+    return (crack_width_ratio > 0 ? crack_width_ratio : std::sqrt(Scalar(Dim)) / 2) * l0;
+  }
+
   Scalar contact_distance() const { return contact_distance_ratio * l0; }
   Scalar contact_stiffness() const {
     return contact_stiffness_ratio * youngs_modulus * (Dim == 3 ? l0 : Scalar(1));
@@ -100,6 +110,9 @@ struct SolidParameters {
     need(std::isfinite(contact_distance_ratio) && contact_distance_ratio > 0, "contact_distance_ratio must be positive");
     need(std::isfinite(contact_stiffness_ratio) && contact_stiffness_ratio >= 0, "contact_stiffness_ratio must be >= 0");
     need(blowup_speed_factor > 0, "blowup_speed_factor must be positive");
+    need(tensile_strength > 0 && !std::isnan(tensile_strength), "tensile_strength (sigma_f) must be positive");
+    need(crack_width_ratio == 0 || (crack_half_width() >= l0 / 2 && crack_half_width() <= re()),
+         "crack_width_ratio must give l0/2 <= Cw l0 <= re (or be 0 for sqrt(d)/2)");
   }
 };
 

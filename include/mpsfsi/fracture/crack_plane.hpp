@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "mpsfsi/core/types.hpp"
+#include "mpsfsi/solid/bonds.hpp"
+
+namespace mpsfsi {
+
+// Bond cutting across the crack plane of a failing particle (eqs 34-35, read as physics-notes
+// section 5 explains: with r_c the midpoint of the bond, as printed, eq 34 never holds).
+// The rule implemented: the crack plane goes through the failing particle c (r_c = x_c) with
+// normal n_c. An intact bond (i, j) is cut when
+//   (eq 34)  i and j lie on opposite sides of the plane, side(p) = [(x_p - x_c) . n_c >= 0]
+//            (a particle on the plane, c itself included, counts on the + side, so c keeps the
+//            bonds on its + side and loses those to the - side), and
+//   (eq 35)  at least one of them is within Cw l0 of c measured along the plane,
+//            |(x_p - x_c) - ((x_p - x_c) . n_c) n_c| <= Cw l0,  Cw = sqrt(d)/2 by default.
+// The crack thus opens one particle wide around c and grows as its neighbours fail in turn.
+// Candidates are c and the particles two bonds away at most (cut or not) within
+// sqrt(re^2 + (Cw l0)^2) of c: every cut bond has an end there. Returns the number of bonds cut;
+// the particles whose bonds changed are appended to `touched`.
+template <int Dim, class Scalar>
+std::size_t cut_bonds_across_plane(BondList<Dim, Scalar>& bonds, const VecArray<Dim, Scalar>& x, std::size_t c,
+                                   const Vec<Dim, Scalar>& normal, Scalar half_width, Scalar re,
+                                   std::vector<std::size_t>& touched, std::vector<std::size_t>& scratch) {
+  const Vec<Dim, Scalar> xc = x[c];
+  auto offset = [&](std::size_t p) { return Vec<Dim, Scalar>(x[p] - xc); };
+  auto side = [&](std::size_t p) { return offset(p).dot(normal) >= 0; };
+  auto along_plane = [&](std::size_t p) {
+    const Vec<Dim, Scalar> d = offset(p);
+    return (d - d.dot(normal) * normal).norm();
+  };
+  const Scalar reach2 = re * re + half_width * half_width;
+  // Candidate set: the 2-ring of c in the bond graph, within reach.
+  scratch.clear();
+  scratch.push_back(c);
+  for (Offset b = bonds.begin(c); b < bonds.end(c); ++b) {
+    const auto j = static_cast<std::size_t>(bonds.neighbor(b));
+    scratch.push_back(j);
+    for (Offset e = bonds.begin(j); e < bonds.end(j); ++e) scratch.push_back(static_cast<std::size_t>(bonds.neighbor(e)));
+  }
+  std::sort(scratch.begin(), scratch.end());
+  scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
+  std::size_t cut = 0;
+  for (const std::size_t i : scratch) {
+    if (offset(i).squaredNorm() > reach2 || along_plane(i) > half_width) continue;
+    const bool side_i = side(i);
+    for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const auto j = static_cast<std::size_t>(bonds.neighbor(b));
+      if (!bonds.intact(b) || side(j) == side_i) continue;
+      bonds.cut(b);
+      touched.push_back(i);
+      touched.push_back(j);
+      ++cut;
+    }
+  }
+  return cut;
+}
+
+}  // namespace mpsfsi

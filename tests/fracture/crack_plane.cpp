@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <doctest/doctest.h>
+
+#include "mpsfsi/fracture/crack_plane.hpp"
+#include "mpsfsi/scenes/solid_block.hpp"
+#include "mpsfsi/solid/elastic_solver.hpp"
+
+using namespace mpsfsi;
+
+namespace {
+
+template <int Dim>
+SolidParameters<Dim> ice(double l0) {
+  SolidParameters<Dim> p;
+  p.l0 = l0;
+  p.density = 917;
+  p.youngs_modulus = 270.084e6;
+  p.poisson_ratio = 0.3;
+  p.plane_model = PlaneModel::plane_stress;
+  p.tensile_strength = 1.140e6;
+  return p;
+}
+
+// Brittle policies with no contact, so that a separated piece is truly free in these tests.
+template <int Dim>
+struct Brittle : BrittleSolidPolicies<Dim> {};
+
+}  // namespace
+
+TEST_SUITE("fracture") {
+
+TEST_CASE_TEMPLATE("fracture.crack_plane: an imposed crack plane cuts a clean straight crack", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  const double l0 = 0.01;
+  Vec<Dim> upper = Vec<Dim>::Constant(0.04);
+  upper[0] = 0.1;
+  upper[1] = 0.06;
+  ElasticSolver<Dim, Brittle<Dim>> s(scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0), ice<Dim>(l0));
+  // A vertical plane x = 0.055 (through the column of centres at 0.055): every particle of that
+  // column fails with normal x, as a crack running across the bar would do.
+  std::size_t cut = 0;
+  for (std::size_t i = 0; i < s.particles().size(); ++i)
+    if (std::abs(s.particles().positions()[i][0] - 0.055) < 1e-9) cut += s.impose_crack(i, Vec<Dim>::UnitX());
+  CHECK(cut > 0);
+  CHECK(cut == s.cut_bonds());
+  const auto& bonds = s.bonds();
+  const auto& x = s.particles().positions();
+  std::size_t across_intact = 0, cut_elsewhere = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const auto j = static_cast<std::size_t>(bonds.neighbor(b));
+      const bool crosses = (x[i][0] < 0.05) != (x[j][0] < 0.05);  // the crack lies between x = 0.045 and 0.055
+      if (crosses && bonds.intact(b)) ++across_intact;
+      if (!crosses && !bonds.intact(b)) ++cut_elsewhere;
+    }
+  CHECK(across_intact == 0);
+  CHECK(cut_elsewhere == 0);
+  // The two halves now move independently: pull the right one away, the left stays put.
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (x[i][0] > 0.09) s.prescribe_velocity(i, Vec<Dim>::UnitX());
+  for (int k = 0; k < 50; ++k) s.step();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (s.reference_positions()[i][0] < 0.04) CHECK(s.particles().velocities()[i].norm() < 1e-12);
+}
+
+TEST_CASE_TEMPLATE("fracture.crack_plane: a bar under uniform tension breaks just above sigma_f, not just below", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  const double l0 = 0.01, strain = 2e-3;
+  Vec<Dim> upper = Vec<Dim>::Constant(0.03);
+  upper[0] = 0.12;
+  const auto bar = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
+  auto params = ice<Dim>(l0);
+  params.plane_model = PlaneModel::plane_stress;
+  const double nu = params.poisson_ratio;
+  // Uniaxial stress state: stretch along x, lateral contraction nu (plane stress / 3D).
+  Mat<Dim> f = Mat<Dim>::Identity() * (1 - nu * strain);
+  f(0, 0) = 1 + strain;
+  Vec<Dim> dir;
+  const double sigma1 = MaxPrincipalStress::principal<Dim, double>(detail::cauchy_from_svk<Dim>(f, params.lame()), dir);
+  for (const double factor : {0.99, 1.01}) {  // the stress as a fraction of sigma_f
+    params.tensile_strength = sigma1 / factor;
+    ElasticSolver<Dim, Brittle<Dim>> s(bar, params);
+    // Impose the stretched state; hold both ends.
+    for (std::size_t i = 0; i < bar.size(); ++i) {
+      s.particles().positions()[i] = f * bar.positions()[i];
+      if (bar.positions()[i][0] < 0.02 || bar.positions()[i][0] > 0.1) s.clamp(i);
+    }
+    s.step();
+    CAPTURE(factor);
+    if (factor < 1) CHECK(s.cut_bonds() == 0);
+    else CHECK(s.cut_bonds() > 0);
+  }
+}
+
+}

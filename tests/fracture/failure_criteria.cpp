@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include <Eigen/Geometry>
+
+#include "mpsfsi/fracture/failure_criteria.hpp"
+
+using namespace mpsfsi;
+
+namespace {
+
+Mat<2> tensor2(double sxx, double syy, double sxy) {
+  Mat<2> s;
+  s << sxx, sxy, sxy, syy;
+  return s;
+}
+
+// |cos| of the angle between two directions (a plane normal has no sign).
+template <int Dim>
+double alignment(const Vec<Dim>& a, const Vec<Dim>& b) {
+  return std::abs(a.normalized().dot(b.normalized()));
+}
+
+}  // namespace
+
+TEST_SUITE("fracture") {
+
+TEST_CASE_TEMPLATE("fracture.failure_criteria: known stress states give sigma_1 and its direction", C,
+                   MaxPrincipalStress, MaxNormalStressAngle) {
+  Vec<2> n;
+  SUBCASE("uniaxial tension along x: vertical crack plane") {
+    CHECK(C::template principal<2, double>(tensor2(3e6, 0, 0), n) == doctest::Approx(3e6));
+    CHECK(alignment<2>(n, Vec<2>(1, 0)) == doctest::Approx(1.0));
+  }
+  SUBCASE("uniaxial tension along y") {
+    CHECK(C::template principal<2, double>(tensor2(-1e6, 2e6, 0), n) == doctest::Approx(2e6));
+    CHECK(alignment<2>(n, Vec<2>(0, 1)) == doctest::Approx(1.0));
+  }
+  SUBCASE("pure shear: sigma_1 = tau at 45 degrees") {
+    CHECK(C::template principal<2, double>(tensor2(0, 0, 5e5), n) == doctest::Approx(5e5));
+    CHECK(alignment<2>(n, Vec<2>(1, 1)) == doctest::Approx(1.0));
+  }
+  SUBCASE("isotropic tension: any direction") {
+    CHECK(C::template principal<2, double>(tensor2(7e5, 7e5, 0), n) == doctest::Approx(7e5));
+    CHECK(n.norm() == doctest::Approx(1.0));
+  }
+  SUBCASE("Mohr's circle") {
+    const double sxx = 2e6, syy = -1e6, sxy = 1.5e6;
+    const double expect = 0.5 * (sxx + syy) + std::hypot(0.5 * (sxx - syy), sxy);
+    CHECK(C::template principal<2, double>(tensor2(sxx, syy, sxy), n) == doctest::Approx(expect).epsilon(1e-12));
+    // The normal stress on the plane with normal n is sigma_1.
+    CHECK(n.dot(tensor2(sxx, syy, sxy) * n) == doctest::Approx(expect).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("fracture.failure_criteria: the paper's angle solution and the eigen-decomposition agree") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-3e6, 3e6);
+  double worst_value = 0, worst_direction = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Mat<2> s = tensor2(u(rng), u(rng), u(rng));
+    Vec<2> a, b;
+    const double sa = MaxNormalStressAngle::principal<2, double>(s, a);
+    const double sb = MaxPrincipalStress::principal<2, double>(s, b);
+    worst_value = std::max(worst_value, std::abs(sa - sb) / s.norm());
+    worst_direction = std::max(worst_direction, 1 - alignment<2>(a, b));
+  }
+  CHECK(worst_value < 1e-12);
+  CHECK(worst_direction < 1e-8);
+}
+
+TEST_CASE_TEMPLATE("fracture.failure_criteria: invariant under rotation of the stress tensor", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-2e6, 2e6);
+  for (int k = 0; k < 200; ++k) {
+    Mat<Dim> s;
+    for (int a = 0; a < Dim; ++a)
+      for (int b = a; b < Dim; ++b) s(a, b) = s(b, a) = u(rng);
+    Mat<Dim> r;
+    if constexpr (Dim == 2) r = Eigen::Rotation2D<double>(u(rng) * 1e-6).toRotationMatrix();
+    else r = Eigen::AngleAxisd(u(rng) * 1e-6, Vec<3>(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    Vec<Dim> n, nr;
+    const double s1 = MaxPrincipalStress::principal<Dim, double>(s, n);
+    const double s1r = MaxPrincipalStress::principal<Dim, double>(Mat<Dim>(r * s * r.transpose()), nr);
+    CHECK(s1r == doctest::Approx(s1).epsilon(1e-12));
+    CHECK(alignment<Dim>(nr, r * n) == doctest::Approx(1.0).epsilon(1e-6));
+    if constexpr (Dim == 2) {
+      Vec<2> m;
+      CHECK(MaxNormalStressAngle::principal<2, double>(Mat<2>(r * s * r.transpose()), m) == doctest::Approx(s1).epsilon(1e-12));
+    }
+  }
+}
+
+TEST_CASE("fracture.failure_criteria: NoFailure never reaches any strength") {
+  Vec<3> n;
+  CHECK(NoFailure::principal<3, double>(Mat<3>::Identity() * 1e12, n) < -1e300);
+  CHECK_FALSE(NoFailure::enabled);
+}
+
+}
