@@ -122,7 +122,7 @@ class ElasticSolver {
     constraint_.assign(n, Constraint::free);
     prescribed_velocity_.assign(n, vec_type::Zero());
     external_.assign(n, vec_type::Zero());
-    compute_acceleration(set_.positions(), force_, acceleration_);
+    compute_acceleration(set_.positions(), set_.velocities(), force_, acceleration_);
   }
 
   // --- Boundary conditions (may be changed between steps) ---
@@ -187,7 +187,7 @@ class ElasticSolver {
     }
     model_.kick(0.5 * dt);
     model_.drift(dt);
-    compute_acceleration(x_next_, force_next_, acceleration_next_);
+    compute_acceleration(x_next_, v_next_, force_next_, acceleration_next_);
     const double limit = p_.blowup_speed_factor * p_.p_wave_speed();
     long long bad = -1;
     MPSFSI_OMP(parallel for schedule(static))
@@ -218,7 +218,7 @@ class ElasticSolver {
     ++step_count_;
     stresses_current_ = false;
     if constexpr (failure_type::enabled) {
-      if (apply_failure()) compute_acceleration(set_.positions(), force_, acceleration_);
+      if (apply_failure()) compute_acceleration(set_.positions(), set_.velocities(), force_, acceleration_);
     }
   }
 
@@ -234,7 +234,7 @@ class ElasticSolver {
                                                    p_.crack_half_width(), p_.re(), touched_, scratch_);
     if (cut > 0) {
       bonds_changed();
-      compute_acceleration(set_.positions(), force_, acceleration_);
+      compute_acceleration(set_.positions(), set_.velocities(), force_, acceleration_);
     }
     return cut;
   }
@@ -358,10 +358,13 @@ class ElasticSolver {
     }
   }
 
-  // m a = f_internal + f_contact + f_external + m g.
-  void compute_acceleration(const VecArray<Dim, double>& x, VecArray<Dim, double>& force, VecArray<Dim, double>& a) {
+  // m a = f_internal + f_contact + f_viscous + f_external + m g. The bond viscosity uses the
+  // velocities it is given (the half-step ones inside step()).
+  void compute_acceleration(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force,
+                            VecArray<Dim, double>& a) {
     model_.internal_forces(x, bonds_, force);
     contact_.add_forces(x, bonds_, force);
+    if (p_.bond_viscosity > 0) add_bond_viscosity(x, v, force);
     a.resize(x.size());
     const double inv_m = 1 / mass_;
     MPSFSI_OMP(parallel for schedule(static))
@@ -371,11 +374,52 @@ class ElasticSolver {
     }
   }
 
+  void add_bond_viscosity(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force) const {
+    const double coeff = p_.bond_viscosity * p_.density * p_.p_wave_speed() * context_.volume * Dim / context_.n0;
+    const auto& offsets = bonds_.offsets();
+    const auto& nb = bonds_.neighbors();
+    const auto& r0 = bonds_.reference_vectors();
+    const auto& beta = bonds_.betas();
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      vec_type sum = vec_type::Zero();
+      for (Offset b = offsets[i]; b < offsets[i + 1]; ++b) {
+        const auto k = static_cast<std::size_t>(b);
+        const auto j = static_cast<std::size_t>(nb[k]);
+        const vec_type r = x[j] - x[i];
+        const double len = r.norm();
+        if (beta[k] == 0 || len == 0) continue;
+        const vec_type e = r / len;
+        sum += (beta[k] * r0[k].norm() * (v[j] - v[i]).dot(e)) * e;  // w0 / |r0| = beta |r0|
+      }
+      force[i] += coeff * sum;
+    }
+  }
+
   // Eq 27 at every particle; each failing particle, strongest first, cuts the bonds across its
   // crack plane. Returns whether any bond was cut (the forces are then recomputed).
   bool apply_failure() {
-    const auto& sigma = stresses();
+    const auto& point = stresses();
     const std::size_t n = set_.size();
+    // The criterion reads the stress averaged over the particle and its intact bonds (weights
+    // w0, the particle itself with the weight of a nearest neighbour), which measures the
+    // stress of the material around the particle rather than its own sample.
+    averaged_.resize(n);
+    const double self_weight = Weight::value(p_.l0, p_.re());
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      mat_type sum = self_weight * point[i];
+      double weight = self_weight;
+      for (Offset b = bonds_.begin(i); b < bonds_.end(i); ++b) {
+        const double w = bonds_.beta(b) * bonds_.r0(b).squaredNorm();
+        sum += w * point[static_cast<std::size_t>(bonds_.neighbor(b))];
+        weight += w;
+      }
+      averaged_[i] = sum / weight;
+    }
+    const auto& sigma = p_.average_failure_stress ? averaged_ : point;
     failing_.clear();
     const double strength = p_.tensile_strength;
     MPSFSI_OMP(parallel)
@@ -449,6 +493,7 @@ class ElasticSolver {
   long long step_count_ = 0;
   bool stresses_current_ = false;
   std::vector<std::pair<double, std::size_t>> failing_;
+  MatArray<Dim, double> averaged_;
   std::vector<std::size_t> touched_, scratch_;
   std::size_t failure_events_ = 0;
   double first_failure_time_ = -1;

@@ -45,6 +45,13 @@ struct SolidParameters {
   // Mass-proportional damping rate (1/s): a = ... - damping v. Zero by default; only for
   // reaching a static state (dynamic relaxation) or quasi-static loading.
   Scalar damping = 0;
+  // Bond viscosity zeta: a damping force along each intact bond on its rate of stretch,
+  //   f_i = zeta rho c V (d/n0) sum_j w0_ij ((v_j - v_i) . e_ij) e_ij / |r0_ij|,
+  // c the P-wave speed. Central, so rigid motion is not damped and momentum and angular momentum
+  // are kept; it damps grid-scale ringing at a ratio of about zeta pi/2 and a bending mode of
+  // wavelength L by about zeta (l0/L). Zero by default; brittle fracture needs some (a bond cut
+  // releases its strain energy into grid-scale waves that otherwise break bonds far from the crack).
+  Scalar bond_viscosity = 0;
   // Penalty contact between particles that are not bonded (other bodies, cut bonds): a
   // repulsion k (d_c - r) along the line of centres for r < d_c, with d_c = contact_distance_ratio
   // l0 and k = contact_stiffness_ratio E l0^(d-2) (a spring as stiff as one particle's column of
@@ -56,6 +63,7 @@ struct SolidParameters {
   // Cw = crack_width_ratio, 0 selecting sqrt(d)/2; l0/2 <= Cw l0 <= re.
   Scalar tensile_strength = std::numeric_limits<Scalar>::infinity();
   Scalar crack_width_ratio = 0;
+  bool average_failure_stress = true;
   // A blow-up is declared when a particle moves faster than this multiple of the P-wave speed.
   Scalar blowup_speed_factor = Scalar(1);
 
@@ -107,6 +115,7 @@ struct SolidParameters {
     need(std::isfinite(dt) && dt >= 0, "dt must be >= 0 (0 selects the automatic step)");
     need(courant > 0 && courant <= max_courant, "courant must lie in (0, max_courant]");
     need(std::isfinite(damping) && damping >= 0, "damping must be >= 0");
+    need(std::isfinite(bond_viscosity) && bond_viscosity >= 0, "bond_viscosity must be >= 0");
     need(std::isfinite(contact_distance_ratio) && contact_distance_ratio > 0, "contact_distance_ratio must be positive");
     need(std::isfinite(contact_stiffness_ratio) && contact_stiffness_ratio >= 0, "contact_stiffness_ratio must be >= 0");
     need(blowup_speed_factor > 0, "blowup_speed_factor must be positive");

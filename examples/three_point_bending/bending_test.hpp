@@ -1,0 +1,316 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Three-point bending of an ice beam with brittle fracture (the paper's Table 1 protocol,
+// physics-notes section 6): E and sigma_f from Table 1 as inputs, nu = 0.3, 917 kg/m3, span
+// 0.18 m on two rigid supports, a rigid indenter at mid-span driven down at constant speed.
+// Shared by examples/three_point_bending and the validation tests.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <mpsfsi/io/csv_writer.hpp>
+#include <mpsfsi/io/progress.hpp>
+#include <mpsfsi/io/pvd_writer.hpp>
+#include <mpsfsi/io/vtu_writer.hpp>
+#include <mpsfsi/scenes/solid_block.hpp>
+#include <mpsfsi/solid/elastic_solver.hpp>
+
+namespace bending {
+
+// One row of the paper's Table 1: specimen width and height, measured peak load and mid-span
+// deflection at the peak. E (eq 36), sigma_f (eq 37) and the flexural strain (eq 38, read as
+// 6 h dd / L^2) follow, as recomputed in physics-notes section 6.
+struct IceBeamCase {
+  std::string name;
+  double width = 0, height = 0, peak_load = 0, deflection = 0;
+  static constexpr double span = 0.18;
+  double youngs_modulus() const { return span * span * span * peak_load / (4 * width * height * height * height * deflection); }
+  double tensile_strength() const { return 3 * peak_load * span / (2 * width * height * height); }
+  double flexural_strain() const { return 6 * height * deflection / (span * span); }
+};
+
+inline std::vector<IceBeamCase> table1() {
+  return {{"02", 0.082, 0.038, 500.1, 6.0e-4},
+          {"03", 0.084, 0.044, 411.9, 4.0e-4},
+          {"04", 0.081, 0.040, 588.4, 9.0e-4},
+          {"05", 0.079, 0.039, 441.3, 1.0e-3},
+          {"10", 0.082, 0.037, 323.6, 1.15e-3}};
+}
+
+struct Options {
+  double l0 = 0.002;        // target spacing; the beam height is made a whole number of spacings
+  double speed = 0.02;      // indenter speed (m/s), reached after a smooth ramp
+  double ramp_periods = 2;  // ramp length in periods of the beam's first bending mode
+  double overhang = 0.01;   // beam length beyond each support (m)
+  double roller_radius = 0.005;  // supports and indenter (m)
+  double poisson_ratio = 0.3, density = 917;
+  mpsfsi::PlaneModel plane_model = mpsfsi::PlaneModel::plane_stress;
+  double courant = 0.4;
+  double bond_viscosity = 0.2;  // damps the grid-scale ringing of bond cuts (SolidParameters)
+  std::string out;          // output directory; empty: no files
+  bool progress = false;
+};
+
+struct HistoryRow {
+  double t, indenter, deflection, load, sxx_top, sxx_bottom;
+};
+
+struct Result {
+  IceBeamCase input;
+  double l0 = 0;
+  std::size_t particles = 0;
+  double peak_load = 0;           // N (force per width times w in 2D)
+  double deflection_at_peak = 0;  // mid-span bottom particle, m
+  double indenter_at_peak = 0;    // indenter travel, m
+  double time_at_peak = 0, first_failure = -1, end_time = 0;
+  double flexural_strain = 0;     // 6 h dd / L^2 with the simulated deflection
+  double final_load_fraction = 1; // load at the end / peak load
+  bool broken = false;            // the beam is in two pieces (intact-bond components)
+  double crack_offset = 0;        // largest |x| of a cut bond's midpoint (reference), m
+  double crack_bottom = 1, crack_top = 0;  // vertical extent of the cut bonds (reference), m
+  double wall_seconds = 0;
+  std::vector<HistoryRow> history;
+  double error() const { return flexural_strain / input.flexural_strain() - 1; }
+};
+
+namespace detail {
+
+// Number of beam particles in each connected piece of the intact-bond graph.
+template <int Dim, class Solver>
+std::vector<std::size_t> pieces(const Solver& s, std::size_t beam_count) {
+  std::vector<int> label(beam_count, -1);
+  std::vector<std::size_t> sizes, stack;
+  for (std::size_t start = 0; start < beam_count; ++start) {
+    if (label[start] >= 0) continue;
+    const int id = static_cast<int>(sizes.size());
+    sizes.push_back(0);
+    stack.assign(1, start);
+    label[start] = id;
+    while (!stack.empty()) {
+      const std::size_t i = stack.back();
+      stack.pop_back();
+      ++sizes.back();
+      for (mpsfsi::Offset b = s.bonds().begin(i); b < s.bonds().end(i); ++b) {
+        const auto j = static_cast<std::size_t>(s.bonds().neighbor(b));
+        if (!s.bonds().intact(b) || j >= beam_count || label[j] >= 0) continue;
+        label[j] = id;
+        stack.push_back(j);
+      }
+    }
+  }
+  return sizes;
+}
+
+}  // namespace detail
+
+// Runs one case. Dim 2: plane stress or strain per unit width, loads scaled by w. Dim 3: the
+// beam's real width (rounded to whole spacings, loads rescaled to the nominal width).
+template <int Dim>
+Result run(const IceBeamCase& c, const Options& o) {
+  using namespace mpsfsi;
+  using vec = Vec<Dim>;
+  const auto wall0 = std::chrono::steady_clock::now();
+  Result r;
+  r.input = c;
+  const int layers = std::max(2, static_cast<int>(std::lround(c.height / o.l0)));
+  const double l0 = c.height / layers;
+  r.l0 = l0;
+  const double span = IceBeamCase::span;
+  const int half_columns = static_cast<int>(std::lround((span / 2 + o.overhang) / l0 - 0.5));
+  const double half_length = (half_columns + 0.5) * l0;
+  const int z_layers = Dim == 3 ? std::max(1, static_cast<int>(std::lround(c.width / l0))) : 1;
+  const double depth = Dim == 3 ? z_layers * l0 : c.width;  // modelled width
+  vec lower = vec::Zero(), upper = vec::Zero();
+  lower[0] = -half_length;
+  upper[0] = half_length;
+  upper[1] = c.height;
+  if constexpr (Dim == 3) upper[2] = depth;
+  ParticleSet<Dim> set = scenes::material_block<Dim>(lower, upper, l0);
+  const std::size_t beam_count = set.size();
+  std::vector<std::int32_t> body(beam_count, 0);
+  // Rigid rollers of radius `roller_radius`: two supports under x = -L/2 and +L/2 and the
+  // indenter above x = 0, each a half-ring of particles (arc spacing about 0.6 l0, so that the
+  // contact spreads over the beam particles it meets), one contact distance l0 from the beam's
+  // outer rows, replicated across the width in 3D.
+  std::vector<std::size_t> indenter;
+  auto add_roller = [&](double cx, double cy, double facing, int id, bool is_indenter) {
+    const int segments = std::max(4, static_cast<int>(std::ceil(M_PI * o.roller_radius / (0.6 * l0))));
+    for (int k = 0; k < z_layers; ++k)
+      for (int m = 0; m <= segments; ++m) {
+        const double angle = M_PI * m / segments;  // 0..pi across the half facing the beam
+        vec p = vec::Zero();
+        p[0] = cx + o.roller_radius * std::cos(angle);
+        p[1] = cy + facing * o.roller_radius * std::sin(angle);
+        if constexpr (Dim == 3) p[2] = (k + 0.5) * l0;
+        const auto i = static_cast<std::size_t>(set.add(p, ParticleKind::solid));
+        body.push_back(id);
+        if (is_indenter) indenter.push_back(i);
+      }
+  };
+  add_roller(-span / 2, -l0 / 2 - o.roller_radius, 1, 1, false);
+  add_roller(span / 2, -l0 / 2 - o.roller_radius, 1, 2, false);
+  add_roller(0, c.height + l0 / 2 + o.roller_radius, -1, 3, true);
+
+  SolidParameters<Dim> p;
+  p.l0 = l0;
+  p.density = o.density;
+  p.youngs_modulus = c.youngs_modulus();
+  p.poisson_ratio = o.poisson_ratio;
+  p.plane_model = o.plane_model;
+  p.tensile_strength = c.tensile_strength();
+  p.courant = o.courant;
+  p.bond_viscosity = o.bond_viscosity;
+  p.max_courant = std::max(p.max_courant, o.courant);
+  ElasticSolver<Dim, BrittleSolidPolicies<Dim>> s(set, p, body);
+  for (std::size_t i = beam_count; i < set.size(); ++i) s.clamp(i);
+  r.particles = set.size();
+
+  // Probes: the bottom and top particles of the centre column (x = 0), at mid-width in 3D.
+  auto nearest = [&](double y) {
+    vec target = vec::Zero();
+    target[1] = y;
+    if constexpr (Dim == 3) target[2] = depth / 2;
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < beam_count; ++i)
+      if ((set.positions()[i] - target).norm() < (set.positions()[best] - target).norm()) best = i;
+    return best;
+  };
+  const std::size_t bottom = nearest(l0 / 2), top = nearest(c.height - l0 / 2);
+  // Bottom particles nearest the supports: the deflection is measured relative to them, so that
+  // the local contact indentation at the supports is not counted as bending.
+  auto nearest_at = [&](double x, double y) {
+    vec target = vec::Zero();
+    target[0] = x;
+    target[1] = y;
+    if constexpr (Dim == 3) target[2] = depth / 2;
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < beam_count; ++i)
+      if ((set.positions()[i] - target).norm() < (set.positions()[best] - target).norm()) best = i;
+    return best;
+  };
+  const std::size_t over_left = nearest_at(-span / 2, l0 / 2), over_right = nearest_at(span / 2, l0 / 2);
+  // The rollers are frictionless, so nothing holds the beam sideways: the top particle of the
+  // centre column is kept from moving along x (no reaction under symmetric loading).
+  s.support(top, vec::UnitX());
+
+  // Loading: v(t) = speed (1 - cos(pi t / t_r)) / 2 up to t_r, then constant; t_r a few periods
+  // of the first bending mode (simply supported Euler-Bernoulli beam) to keep it quasi-static.
+  const double inertia = c.height * c.height * c.height / 12;
+  const double omega1 = std::pow(M_PI / span, 2) * std::sqrt(c.youngs_modulus() * inertia / (o.density * c.height));
+  const double ramp = o.ramp_periods * 2 * M_PI / omega1;
+  // The expected failure time if the beam behaved as Table 1 says, to size the run.
+  const double expected = c.deflection / o.speed + ramp / 2;
+  const double t_max = 3 * expected;
+  const double scale = Dim == 2 ? c.width : c.width / depth;  // to the specimen's force in N
+
+  std::unique_ptr<PvdWriter> pvd;
+  std::size_t frame = 0;
+  if (!o.out.empty()) {
+    std::filesystem::create_directories(o.out);
+    pvd = std::make_unique<PvdWriter>(o.out + "/case" + c.name + ".pvd");
+  }
+  std::unique_ptr<ProgressReporter> progress;
+  if (o.progress) progress = std::make_unique<ProgressReporter>(1.2 * expected);
+  auto snapshot = [&] {
+    if (!pvd) return;
+    const std::string file = numbered_file_name("case" + c.name, frame++);
+    write_vtu(o.out + "/" + file, s.output());
+    pvd->add(s.time(), file);
+  };
+  snapshot();
+  // The indenter's lowest particle (angle pi/2) is its reference point for the travel.
+  std::size_t lowest = indenter[0];
+  for (const auto i : indenter)
+    if (s.particles().positions()[i][1] < s.particles().positions()[lowest][1]) lowest = i;
+  const double y_indenter0 = s.particles().positions()[lowest][1];
+  double after_peak_low = -1, next_snapshot = 0;
+  const long long history_every = std::max(1LL, static_cast<long long>(expected / 2000 / s.dt()));
+  for (;;) {
+    const double t = s.time();
+    const double v = t < ramp ? o.speed * 0.5 * (1 - std::cos(M_PI * t / ramp)) : o.speed;
+    vec vel = vec::Zero();
+    vel[1] = -v;
+    for (const auto i : indenter) s.prescribe_velocity(i, vel);
+    s.step();
+    // Load: the beam pushes the indenter up through contact.
+    double load = 0;
+    for (const auto i : indenter) load += s.internal_force(i)[1];
+    load *= scale;
+    auto sag = [&](std::size_t i) { return (s.reference_positions()[i] - s.particles().positions()[i])[1]; };
+    const double deflection = sag(bottom) - 0.5 * (sag(over_left) + sag(over_right));
+    const double travel = y_indenter0 - s.particles().positions()[lowest][1];
+    // The peak: the largest load up to 0.2 ms after the first crack (the crack runs through the
+    // beam in about that time); later spikes are fragments knocking against the rollers.
+    const bool before_fracture = s.first_failure_time() < 0 || s.time() < s.first_failure_time() + 2e-4;
+    if (before_fracture && load > r.peak_load) {
+      r.peak_load = load;
+      r.deflection_at_peak = deflection;
+      r.indenter_at_peak = travel;
+      r.time_at_peak = s.time();
+    }
+    // History: evenly in time, and every 10th step once cracks run (to resolve the load drop).
+    if (s.step_count() % history_every == 0 || (s.cut_bonds() > 0 && s.step_count() % 10 == 0)) {
+      const auto& sigma = s.stresses();
+      r.history.push_back({s.time(), travel, deflection, load, sigma[top](0, 0), sigma[bottom](0, 0)});
+    }
+    if (pvd && (s.time() >= next_snapshot || (s.cut_bonds() > 0 && s.step_count() % 20 == 0))) {
+      snapshot();
+      next_snapshot = s.time() + expected / 20;
+    }
+    if (progress) progress->update(s.step_count(), std::min(s.time(), 1.2 * expected));
+    // Stop when the beam is in two pieces and the load has stayed below 2 % of the peak for
+    // 0.5 ms, or 5 ms after the first crack, or at three times the expected failure time.
+    if (s.first_failure_time() >= 0 && load < 0.02 * r.peak_load) {
+      if (after_peak_low < 0) after_peak_low = s.time();
+      if (s.time() - after_peak_low > 5e-4 && s.step_count() % 50 == 0) {
+        std::size_t big = 0;
+        for (const auto n : detail::pieces<Dim>(s, beam_count)) big += n > beam_count / 10 ? 1 : 0;
+        if (big >= 2) break;
+      }
+    } else {
+      after_peak_low = -1;
+    }
+    if (s.time() > t_max || (s.first_failure_time() >= 0 && s.time() > s.first_failure_time() + 5e-3)) break;
+  }
+  if (progress) progress->finish();
+  snapshot();
+  r.end_time = s.time();
+  r.first_failure = s.first_failure_time();
+  r.flexural_strain = 6 * c.height * r.deflection_at_peak / (span * span);
+  double last_load = 0;
+  for (const auto i : indenter) last_load += s.internal_force(i)[1];
+  r.final_load_fraction = last_load * scale / r.peak_load;
+  const auto sizes = detail::pieces<Dim>(s, beam_count);
+  std::size_t big = 0;
+  for (const auto n : sizes) big += n > beam_count / 10 ? 1 : 0;
+  r.broken = big >= 2;
+  for (std::size_t i = 0; i < beam_count; ++i)
+    for (Offset b = s.bonds().begin(i); b < s.bonds().end(i); ++b) {
+      if (s.bonds().intact(b)) continue;
+      const auto j = static_cast<std::size_t>(s.bonds().neighbor(b));
+      const vec mid = 0.5 * (s.reference_positions()[i] + s.reference_positions()[j]);
+      r.crack_offset = std::max(r.crack_offset, std::abs(mid[0]));
+      r.crack_bottom = std::min(r.crack_bottom, mid[1]);
+      r.crack_top = std::max(r.crack_top, mid[1]);
+    }
+  if (!o.out.empty()) {
+    CsvWriter history(o.out + "/case" + c.name + "_history.csv",
+                      {"t", "indenter_m", "deflection_m", "load_N", "sxx_top_Pa", "sxx_bottom_Pa"});
+    for (const auto& h : r.history) history.row({h.t, h.indenter, h.deflection, h.load, h.sxx_top, h.sxx_bottom});
+    CsvWriter final_state(o.out + "/case" + c.name + "_final.csv", {"x", "y", "damage", "sxx_Pa"});
+    const auto& out = s.output();
+    const auto& sigma = s.stresses();
+    for (std::size_t i = 0; i < beam_count; ++i)
+      final_state.row({out.positions()[i][0], out.positions()[i][1], s.bonds().damage(i), sigma[i](0, 0)});
+  }
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return r;
+}
+
+}  // namespace bending
