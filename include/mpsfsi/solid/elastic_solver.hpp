@@ -48,6 +48,15 @@ struct PaperSolidPolicies : SolidDefaults<Dim> {
   using stress_model = HwangModel<Dim, double>;
 };
 
+// One particle failing (eq 27): when, which particle, sigma_1 and the crack-plane normal.
+template <int Dim>
+struct FailureEvent {
+  double time = 0;
+  std::size_t particle = 0;
+  double sigma1 = 0;
+  Vec<Dim, double> normal = Vec<Dim, double>::Zero();
+};
+
 // How a particle's motion is constrained.
 enum class Constraint : std::int32_t {
   free = 0,
@@ -332,6 +341,8 @@ class ElasticSolver {
   std::size_t cut_bonds() const { return bonds_.num_cut(); }
   std::size_t failure_events() const { return failure_events_; }
   double first_failure_time() const { return first_failure_time_; }
+  // Every failure in order: the crack path (reference_positions()[event.particle]) and history.
+  const std::vector<FailureEvent<Dim>>& failure_log() const { return failure_log_; }
 
   // Directed bonds evaluated per force evaluation (the benchmark's unit of work).
   std::size_t bond_evaluations_per_step() const { return bonds_.num_bonds(); }
@@ -444,6 +455,7 @@ class ElasticSolver {
       vec_type direction;
       failure_type::template principal<Dim, double>(sigma[i], direction);
       cut += cut_bonds_across_plane(bonds_, set_.positions(), i, direction, p_.crack_half_width(), p_.re(), touched_, scratch_);
+      failure_log_.push_back({time_, i, s1, direction});
       ++failure_events_;
       if (first_failure_time_ < 0) first_failure_time_ = time_;
     }
@@ -496,6 +508,7 @@ class ElasticSolver {
   MatArray<Dim, double> averaged_;
   std::vector<std::size_t> touched_, scratch_;
   std::size_t failure_events_ = 0;
+  std::vector<FailureEvent<Dim>> failure_log_;
   double first_failure_time_ = -1;
 };
 
