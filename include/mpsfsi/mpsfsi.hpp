@@ -29,6 +29,15 @@
 #include "mpsfsi/fluid/ppe.hpp"
 // mpsfsi/fluid/hypre_amg.hpp is left out: it needs hypre and MPI (target mpsfsi::hypre).
 
+#include "mpsfsi/solid/bonds.hpp"
+#include "mpsfsi/solid/contact.hpp"
+#include "mpsfsi/solid/corrected_total_lagrangian.hpp"
+#include "mpsfsi/solid/deformation.hpp"
+#include "mpsfsi/solid/elastic_solver.hpp"
+#include "mpsfsi/solid/hwang_model.hpp"
+#include "mpsfsi/solid/solid_parameters.hpp"
+#include "mpsfsi/fracture/crack_plane.hpp"
+#include "mpsfsi/fracture/failure_criteria.hpp"
 #include "mpsfsi/io/csv_writer.hpp"
 #include "mpsfsi/io/progress.hpp"
 #include "mpsfsi/io/pvd_writer.hpp"
@@ -37,4 +46,6 @@
 #include "mpsfsi/core/filter_neighbors.hpp"
 #include "mpsfsi/scenes/dam_break.hpp"
 #include "mpsfsi/scenes/lattice.hpp"
+#include "mpsfsi/scenes/oscillating_plate.hpp"
+#include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/scenes/tank.hpp"

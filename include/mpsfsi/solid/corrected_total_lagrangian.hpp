@@ -114,12 +114,7 @@ class CorrectedTotalLagrangian {
 
   // Cauchy stress at positions x.
   void stresses(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds, MatArray<Dim, Scalar>& sigma) {
-    sigma.resize(x.size());
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      sigma[i] = detail::cauchy_from_svk(fit_.gradient(x, bonds, i), context_.lame);
-    }
+    detail::fitted_cauchy_stresses(fit_, x, bonds, context_.lame, sigma);
   }
 
   // U = sum_i V psi(E_i) + U_stab (the energy whose gradient the forces are).

@@ -180,5 +180,18 @@ Mat<Dim, Scalar> cauchy_from_svk(const Mat<Dim, Scalar>& f, const LameConstants<
   return f * s * f.transpose() / f.determinant();
 }
 
+// Cauchy stress of every particle from the fit's deformation gradient at positions x.
+template <int Dim, class Scalar>
+void fitted_cauchy_stresses(const DeformationFit<Dim, Scalar>& fit, const VecArray<Dim, Scalar>& x,
+                            const BondList<Dim, Scalar>& bonds, const LameConstants<Scalar>& lame,
+                            MatArray<Dim, Scalar>& sigma) {
+  sigma.resize(x.size());
+  MPSFSI_OMP(parallel for schedule(static))
+  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    sigma[i] = cauchy_from_svk(fit.gradient(x, bonds, i), lame);
+  }
+}
+
 }  // namespace detail
 }  // namespace mpsfsi

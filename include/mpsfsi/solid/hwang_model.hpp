@@ -107,12 +107,7 @@ class HwangModel {
   }
 
   void stresses(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds, MatArray<Dim, Scalar>& sigma) {
-    sigma.resize(x.size());
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      sigma[i] = detail::cauchy_from_svk(fit_.gradient(x, bonds, i), context_.lame);
-    }
+    detail::fitted_cauchy_stresses(fit_, x, bonds, context_.lame, sigma);
   }
 
   // The model has no potential of its own; its strain energy is measured with the SVK energy of
