@@ -286,9 +286,13 @@ Result run(const IceBeamCase& c, const Options& o) {
       const auto& sigma = s.stresses();
       r.history.push_back({s.time(), travel, deflection, bottom_deflection, load, sigma[top](0, 0), sigma[bottom](0, 0)});
     }
-    if (pvd && (s.time() >= next_snapshot || (s.cut_bonds() > 0 && s.step_count() % 20 == 0))) {
+    // Snapshots: 20 over the loading, then every 0.05 ms for the first millisecond of fracture.
+    const bool fracturing = s.first_failure_time() >= 0 && s.time() < s.first_failure_time() + 1e-3;
+    if (pvd && s.time() >= next_snapshot) {
       snapshot();
-      next_snapshot = s.time() + expected / 20;
+      next_snapshot = s.time() + (fracturing ? 5e-5 : expected / 20);
+    } else if (fracturing && next_snapshot > s.time() + 5e-5) {
+      next_snapshot = s.time();  // the first crack: switch to the fine cadence at once
     }
     if (progress) progress->update(s.step_count(), std::min(s.time(), 1.2 * expected));
     // Stop when the beam is in two pieces and the load has stayed below 2 % of the peak for
