@@ -143,7 +143,11 @@ Result run(const IceBeamCase& c, const Options& o) {
   // outer rows, replicated across the width in 3D.
   std::vector<std::size_t> indenter;
   auto add_roller = [&](double cx, double cy, double facing, int id, bool is_indenter) {
-    const int segments = std::max(4, static_cast<int>(std::ceil(M_PI * o.roller_radius / (0.6 * l0))));
+    // An even number of segments puts a particle at the pole, exactly one contact distance from
+    // the beam: with a gap the indenter strikes the beam, which (held by nothing but contact)
+    // bounces between rollers and indenter.
+    int segments = std::max(4, static_cast<int>(std::ceil(M_PI * o.roller_radius / (0.6 * l0))));
+    segments += segments % 2;
     for (int k = 0; k < z_layers; ++k)
       for (int m = 0; m <= segments; ++m) {
         const double angle = M_PI * m / segments;  // 0..pi across the half facing the beam

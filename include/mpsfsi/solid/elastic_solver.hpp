@@ -127,7 +127,8 @@ class ElasticSolver {
     context_.lap_lambda = lattice.lambda;
     mass_ = p_.density * context_.volume;
     model_.initialize(bonds_, context_);
-    contact_.initialize(n, p_.contact_distance(), p_.contact_stiffness());
+    contact_.initialize(n, p_.contact_distance(), p_.contact_stiffness(),
+                        2 * p_.contact_damping_ratio * std::sqrt(p_.contact_stiffness() * 0.5 * mass_));
     constraint_.assign(n, Constraint::free);
     prescribed_velocity_.assign(n, vec_type::Zero());
     external_.assign(n, vec_type::Zero());
@@ -374,7 +375,7 @@ class ElasticSolver {
   void compute_acceleration(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force,
                             VecArray<Dim, double>& a) {
     model_.internal_forces(x, bonds_, force);
-    contact_.add_forces(x, bonds_, force);
+    contact_.add_forces(x, v, bonds_, force);
     if (p_.bond_viscosity > 0) add_bond_viscosity(x, v, force);
     a.resize(x.size());
     const double inv_m = 1 / mass_;

@@ -58,6 +58,7 @@ struct SolidParameters {
   // material: its frequency sqrt(k/m) = sqrt(ratio E/rho)/l0, which enters the stable dt).
   Scalar contact_distance_ratio = Scalar(1.0);
   Scalar contact_stiffness_ratio = Scalar(1.0);
+  Scalar contact_damping_ratio = Scalar(0.2);  // zeta of the contact dashpot (contact.hpp)
   // Brittle failure (used only when the failure policy is not NoFailure): tensile strength
   // sigma_f (required then) and the crack's half-width Cw l0 along the plane (eq 35), with
   // Cw = crack_width_ratio, 0 selecting sqrt(d)/2; l0/2 <= Cw l0 <= re.
@@ -118,6 +119,7 @@ struct SolidParameters {
     need(std::isfinite(bond_viscosity) && bond_viscosity >= 0, "bond_viscosity must be >= 0");
     need(std::isfinite(contact_distance_ratio) && contact_distance_ratio > 0, "contact_distance_ratio must be positive");
     need(std::isfinite(contact_stiffness_ratio) && contact_stiffness_ratio >= 0, "contact_stiffness_ratio must be >= 0");
+    need(std::isfinite(contact_damping_ratio) && contact_damping_ratio >= 0, "contact_damping_ratio must be >= 0");
     need(blowup_speed_factor > 0, "blowup_speed_factor must be positive");
     need(tensile_strength > 0 && !std::isnan(tensile_strength), "tensile_strength (sigma_f) must be positive");
     need(crack_width_ratio == 0 || (crack_half_width() >= l0 / 2 && crack_half_width() <= re()),
