@@ -48,6 +48,7 @@ Options parse(int argc, char** argv) {
     else if (key == "--speed") o.run.speed = std::stod(v);
     else if (key == "--plane") o.run.plane_model = v == "strain" ? mpsfsi::PlaneModel::plane_strain : mpsfsi::PlaneModel::plane_stress;
     else if (key == "--out") o.run.out = v;
+    else if (key == "--contact-damping") o.run.contact_damping = std::stod(v);
     else {
       std::fprintf(stderr, "three_point_bending: unknown option %s\n", key.c_str());
       std::exit(2);

@@ -35,10 +35,9 @@ struct NoContact {
 
 // Frictionless penalty contact between particles that are not joined by an intact bond:
 //   f_i = [k (d_c - r) - c (v_i - v_j) . e] e,  e = (x_i - x_j)/r,  for r < d_c,
-// a linear spring that only pushes (energy k (d_c - r)^2 / 2 per pair) with a normal dashpot
-// c = 2 zeta sqrt(k m/2) (zeta = contact damping ratio) so that contacts do not rattle: an
-// undamped particle contact rings at sqrt(2k/m) and its chatter showed in the indenter load of
-// the bending study at l0 = 1 mm. Used at
+// a linear spring that only pushes (energy k (d_c - r)^2 / 2 per pair) with an optional normal
+// dashpot c = 2 zeta sqrt(k m/2) (zeta = SolidParameters::contact_damping_ratio, 0 by default)
+// for impacts that should not bounce. Used at
 // supports and indenters (other bodies) and between fragments after fracture (cut bonds). The
 // candidate pairs are a Verlet list with a skin of half a spacing, rebuilt when some particle has
 // moved more than half the skin since the last build or a bond has been cut since.
