@@ -28,9 +28,7 @@ void solid_step(benchmark::State& state) {
   std::size_t tip = 0;
   SolidParameters<Dim> p;
   p.l0 = l0;
-  p.density = plate.density;
-  p.youngs_modulus = plate.youngs_modulus;
-  p.poisson_ratio = plate.poisson_ratio;
+  plate.set_material(p);
   ElasticSolver<Dim, Policies> solver(plate.particles<Dim>(l0, 4, clamped, tip), p);
   for (const auto i : clamped) solver.clamp(i);
   for (int k = 0; k < 10; ++k) solver.step();

@@ -36,9 +36,7 @@ PlateResult run_plate(int layers, double periods) {
   auto set = plate.particles<Dim>(l0, 4, clamped, tip);
   SolidParameters<Dim> p;
   p.l0 = l0;
-  p.density = plate.density;
-  p.youngs_modulus = plate.youngs_modulus;
-  p.poisson_ratio = plate.poisson_ratio;
+  plate.set_material(p);
   p.plane_model = PlaneModel::plane_strain;
   ElasticSolver<Dim, Policies> s(set, p);
   for (const auto i : clamped) s.clamp(i);

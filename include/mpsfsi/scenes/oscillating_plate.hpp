@@ -29,6 +29,15 @@ struct OscillatingPlate {
     return 2 * M_PI / std::sqrt(youngs_modulus * thickness * thickness * std::pow(k, 4) * factor / (12 * density));
   }
 
+  // Copies the plate's material (density, E, nu) into solver parameters (any type with those
+  // members, e.g. SolidParameters), so that cases built on the plate cannot disagree on it.
+  template <class Parameters>
+  void set_material(Parameters& p) const {
+    p.density = density;
+    p.youngs_modulus = youngs_modulus;
+    p.poisson_ratio = poisson_ratio;
+  }
+
   // Mode shape normalised to 1 at the tip (x from the clamp).
   double mode(double x) const {
     const double k = kl / length, kL = kl;

@@ -91,6 +91,8 @@ class BondList {
   Index neighbor(Offset b) const { return neighbor_[static_cast<std::size_t>(b)]; }
   const vec_type& r0(Offset b) const { return r0_[static_cast<std::size_t>(b)]; }
   Scalar beta(Offset b) const { return beta_[static_cast<std::size_t>(b)]; }
+  // The reference weight w(|r0_ij|) (zero once cut).
+  Scalar weight(Offset b) const { return beta(b) * r0(b).squaredNorm(); }
   bool intact(Offset b) const { return intact_[static_cast<std::size_t>(b)] != 0; }
   Offset reverse(Offset b) const { return reverse_[static_cast<std::size_t>(b)]; }
 

@@ -340,7 +340,7 @@ class ElasticSolver {
   // Fracture record: bonds (pairs) cut so far, particle failures so far (a particle counts each
   // step it fails), and the time of the first failure (negative if none yet).
   std::size_t cut_bonds() const { return bonds_.num_cut(); }
-  std::size_t failure_events() const { return failure_events_; }
+  std::size_t failure_events() const { return failure_log_.size(); }
   double first_failure_time() const { return first_failure_time_; }
   // Every failure in order: the crack path (reference_positions()[event.particle]) and history.
   const std::vector<FailureEvent<Dim>>& failure_log() const { return failure_log_; }
@@ -425,7 +425,7 @@ class ElasticSolver {
       mat_type sum = self_weight * point[i];
       double weight = self_weight;
       for (Offset b = bonds_.begin(i); b < bonds_.end(i); ++b) {
-        const double w = bonds_.beta(b) * bonds_.r0(b).squaredNorm();
+        const double w = bonds_.weight(b);
         sum += w * point[static_cast<std::size_t>(bonds_.neighbor(b))];
         weight += w;
       }
@@ -436,28 +436,28 @@ class ElasticSolver {
     const double strength = p_.tensile_strength;
     MPSFSI_OMP(parallel)
     {
-      std::vector<std::pair<double, std::size_t>> mine;
+      std::vector<Failing> mine;
       MPSFSI_OMP(for schedule(static) nowait)
       for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
         const auto i = static_cast<std::size_t>(ii);
         if (constraint_[i] == Constraint::prescribed || bonds_.intact_count(i) == 0) continue;
         vec_type direction;
         const double s1 = failure_type::template principal<Dim, double>(sigma[i], direction);
-        if (s1 >= strength) mine.emplace_back(s1, i);
+        if (s1 >= strength) mine.push_back({s1, i, direction});
       }
       MPSFSI_OMP(critical)
       failing_.insert(failing_.end(), mine.begin(), mine.end());
     }
     if (failing_.empty()) return false;
-    std::sort(failing_.begin(), failing_.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
+    std::sort(failing_.begin(), failing_.end(), [](const Failing& a, const Failing& b) {
+      return a.sigma1 > b.sigma1 || (a.sigma1 == b.sigma1 && a.particle < b.particle);
+    });
     touched_.clear();
     std::size_t cut = 0;
-    for (const auto& [s1, i] : failing_) {
-      vec_type direction;
-      failure_type::template principal<Dim, double>(sigma[i], direction);
-      cut += cut_bonds_across_plane(bonds_, set_.positions(), i, direction, p_.crack_half_width(), p_.re(), touched_, scratch_);
-      failure_log_.push_back({time_, i, s1, direction});
-      ++failure_events_;
+    for (const auto& f : failing_) {
+      cut += cut_bonds_across_plane(bonds_, set_.positions(), f.particle, f.normal, p_.crack_half_width(), p_.re(),
+                                    touched_, scratch_);
+      failure_log_.push_back({time_, f.particle, f.sigma1, f.normal});
       if (first_failure_time_ < 0) first_failure_time_ = time_;
     }
     if (cut == 0) return false;
@@ -505,10 +505,14 @@ class ElasticSolver {
   double time_ = 0, last_dt_ = 0;
   long long step_count_ = 0;
   bool stresses_current_ = false;
-  std::vector<std::pair<double, std::size_t>> failing_;
+  struct Failing {
+    double sigma1;
+    std::size_t particle;
+    vec_type normal;
+  };
+  std::vector<Failing> failing_;
   MatArray<Dim, double> averaged_;
   std::vector<std::size_t> touched_, scratch_;
-  std::size_t failure_events_ = 0;
   std::vector<FailureEvent<Dim>> failure_log_;
   double first_failure_time_ = -1;
 };

@@ -42,10 +42,8 @@ class HwangModel {
     context_ = context;
     const std::size_t n = bonds.num_particles();
     fit_.build(bonds, context.l0);
-    own_n0_.assign(n, 0);
-    for (std::size_t i = 0; i < n; ++i)
-      for (Offset b = bonds.begin(i); b < bonds.end(i); ++b)
-        own_n0_[i] += bonds.beta(b) * bonds.r0(b).squaredNorm();
+    own_n0_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) own_n0_[i] = reference_density(bonds, i);
     if (rotation_.size() != n) {
       rotation_.assign(n, mat_type::Identity());
       spin_.assign(n, spin_type::Zero());
@@ -58,8 +56,7 @@ class HwangModel {
   void bonds_changed(const BondList<Dim, Scalar>& bonds, const std::vector<std::size_t>& particles) {
     for (const std::size_t i : particles) {
       fit_.rebuild(bonds, i);
-      own_n0_[i] = 0;
-      for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) own_n0_[i] += bonds.beta(b) * bonds.r0(b).squaredNorm();
+      own_n0_[i] = reference_density(bonds, i);
     }
   }
 
@@ -79,7 +76,7 @@ class HwangModel {
         for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
           const Scalar len0 = bonds.r0(b).norm();
           const Scalar len = (x[static_cast<std::size_t>(bonds.neighbor(b))] - x[i]).norm();
-          sum += (len - len0) / len0 * bonds.beta(b) * len0 * len0;
+          sum += (len - len0) / len0 * bonds.weight(b);
         }
         strain_[i] = own_n0_[i] > 0 ? d * sum / own_n0_[i] : Scalar(0);
       }
@@ -90,7 +87,7 @@ class HwangModel {
         spin_type tau = spin_type::Zero();
         for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
           const auto j = static_cast<std::size_t>(bonds.neighbor(b));
-          const Scalar w0 = bonds.beta(b) * bonds.r0(b).squaredNorm();
+          const Scalar w0 = bonds.weight(b);
           if (w0 == 0) continue;
           const vec_type r = x[j] - x[i];
           const Scalar len = r.norm(), len0 = bonds.r0(b).norm();
@@ -136,6 +133,13 @@ class HwangModel {
   spin_type& spin(std::size_t i) { return spin_[i]; }
 
  private:
+  // n0_i: the particle's own reference number density over its intact bonds (eq 17).
+  static Scalar reference_density(const BondList<Dim, Scalar>& bonds, std::size_t i) {
+    Scalar n0 = 0;
+    for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) n0 += bonds.weight(b);
+    return n0;
+  }
+
   static spin_type cross(const vec_type& a, const vec_type& b) {
     if constexpr (Dim == 2) return spin_type(a[0] * b[1] - a[1] * b[0]);
     else return a.cross(b);
