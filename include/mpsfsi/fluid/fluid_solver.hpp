@@ -67,6 +67,9 @@ class FluidSolver {
  public:
   using vec_type = Vec<Dim, double>;
   using parameters_type = FluidParameters<Dim, double>;
+  using scalar_type = double;
+  using weight_type = Weight;
+  static constexpr int dimension = Dim;
 
   // Takes the particles (fluid, wall and dummy) and the parameters; throws InvalidInput on an
   // empty set, a set without fluid, non-finite values, overlapping particles or bad parameters.

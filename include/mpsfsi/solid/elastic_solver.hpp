@@ -83,6 +83,9 @@ class ElasticSolver {
   using stress_model_type = typename Policies::stress_model;
   using contact_type = typename Policies::contact;
   using failure_type = typename Policies::failure;
+  using scalar_type = double;
+  using weight_type = Weight;
+  static constexpr int dimension = Dim;
 
   // Takes the particles (all become ParticleKind::solid; their positions are the reference
   // configuration, their velocities the initial ones), the parameters and optionally a body id
@@ -192,7 +195,10 @@ class ElasticSolver {
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
-      v_next_[i] = constrained(i, decay * v[i] + 0.5 * dt * acceleration_[i]);
+      // The acceleration of the current state, with the external force as it is now (a coupler
+      // changes it between steps).
+      const vec_type a = (force_[i] + external_[i]) / mass_ + p_.gravity;
+      v_next_[i] = constrained(i, decay * v[i] + 0.5 * dt * a);
       x_next_[i] = x[i] + dt * v_next_[i];
     }
     model_.kick(0.5 * dt);

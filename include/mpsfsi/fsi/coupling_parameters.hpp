@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "mpsfsi/core/error.hpp"
+
+namespace mpsfsi {
+
+// Settings of FsiCoupler. The fluid's time step is the coupling step; the structure sub-steps
+// within it at its own stable step (ElasticSolver::advance_by).
+struct CouplingParameters {
+  // Radius, in l0, of the weighted averages of eq 18 (interface pressure) and eq 10 (interface
+  // acceleration seen by the fluid); the fluid's density radius by default.
+  double interface_radius_ratio = 2.1;
+  // A structure particle is on the surface (a wall for the fluid, loaded by it) when its
+  // number-density gradient exceeds this fraction of n0 (structure_surface.hpp).
+  double surface_threshold = 0.1;
+  // Eq 10: the interface acceleration as a coupling term in the fluid predictor (the paper's
+  // scheme). The wall velocity enters the PPE either way.
+  bool interface_acceleration = true;
+  // Scale eq 18's pressure by the wetted fraction of a partially wetted element (interface_load.hpp).
+  bool partial_wetting_correction = true;
+
+  void validate() const {
+    auto need = [](bool ok, const std::string& what) {
+      if (!ok) detail::throw_invalid("CouplingParameters", what);
+    };
+    need(std::isfinite(interface_radius_ratio) && interface_radius_ratio > 1, "interface_radius_ratio must exceed 1");
+    need(surface_threshold > 0 && surface_threshold < 1, "surface_threshold must lie in (0, 1)");
+  }
+};
+
+}  // namespace mpsfsi

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+namespace mpsfsi {
+
+// Coupling-scheme policies of FsiCoupler. One coupled step from t^n to t^n + dt:
+//
+// ExplicitPartitioned, the paper's scheme (its Fig 1 and physics-notes section 4): the fluid steps
+// with the structure at t^n as its moving wall, the interface pressure P^{n+1} becomes the load,
+// and the structure sub-steps to t^n + dt under it. One fluid solve per step. Like every
+// loosely coupled scheme it is subject to the added-mass instability when the structure is light
+// against the fluid it moves.
+struct ExplicitPartitioned {
+  static constexpr bool iterative = false;
+  static constexpr const char* name = "explicit";
+};
+
+// SubIterated: strong (implicit) coupling by fixed-point iteration on the interface load with
+// Aitken's dynamic relaxation (Kuettler & Wall 2008). Iteration 0 is the explicit step. Then,
+// repeatedly: the fluid redoes the step from t^n with the wall moving at the structure's mean
+// velocity over the step, (x_s^{n+1,k} - x_s^n)/dt, the new interface load F~ gives the residual
+// r_k = F~ - F_k, the load is relaxed, F_{k+1} = F_k + omega_k r_k,
+//   omega_k = -omega_{k-1} r_{k-1}.(r_k - r_{k-1}) / |r_k - r_{k-1}|^2,
+// and the structure redoes the step from t^n under F_{k+1}. Converged when
+// |r_k| <= tolerance |F~| (2-norms over the structure's particles); a step that does not converge
+// within max_iterations throws SimulationError. Costs one fluid solve per iteration.
+struct SubIterated {
+  static constexpr bool iterative = true;
+  static constexpr const char* name = "sub-iterated";
+  int max_iterations = 50;
+  double tolerance = 1e-3;
+  double initial_relaxation = 0.5;  // omega_0, also the bound of |omega| at the first iteration
+};
+
+}  // namespace mpsfsi

@@ -1,0 +1,275 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "mpsfsi/core/cell_list_search.hpp"
+#include "mpsfsi/core/error.hpp"
+#include "mpsfsi/core/particle_set.hpp"
+#include "mpsfsi/fsi/coupling_parameters.hpp"
+#include "mpsfsi/fsi/coupling_schemes.hpp"
+#include "mpsfsi/fsi/interface_acceleration.hpp"
+#include "mpsfsi/fsi/interface_load.hpp"
+#include "mpsfsi/fsi/structure_surface.hpp"
+#include "mpsfsi/kernels/lattice_constants.hpp"
+#include "mpsfsi/kernels/weight.hpp"
+
+namespace mpsfsi {
+
+// Fully Lagrangian fluid-structure interaction (the paper's eqs 9-10, 18-19, Fig 1;
+// physics-notes section 4), for a FluidSolver and an ElasticSolver of the same dimension:
+// - The structure's particles join the fluid's particle set: its surface particles (structure
+//   normals from the number-density gradient of its intact bonds) as moving wall particles in
+//   the PPE, the rest as dummy particles. Positions, velocities and the surface are refreshed
+//   from the structure before every fluid step, so deformation and cracks reach the fluid; fluid
+//   may enter a crack once it opens.
+// - The interface pressure at x_i + 0.5 l0 n_i (eqs 18-19) becomes the structure's load.
+// - The structure sub-steps through each fluid step (dt_f / dt_s steps of its own stable dt).
+// - The interface acceleration enters the fluid predictor (eq 10), unless switched off.
+// The Scheme policy (coupling_schemes.hpp) decides how the two are advanced within a step.
+template <class Fluid, class Solid, class Scheme = ExplicitPartitioned>
+class FsiCoupler {
+  static_assert(Fluid::dimension == Solid::dimension,
+                "FsiCoupler: the fluid and the solid solver have different dimensions (FluidSolver<Dim> and "
+                "ElasticSolver<Dim> must use the same Dim)");
+  static_assert(std::is_same_v<typename Fluid::scalar_type, typename Solid::scalar_type>,
+                "FsiCoupler: the fluid and the solid solver use different scalar types");
+
+ public:
+  static constexpr int dimension = Fluid::dimension;
+  using scalar_type = typename Fluid::scalar_type;
+  using vec_type = Vec<dimension, scalar_type>;
+  using fluid_type = Fluid;
+  using solid_type = Solid;
+  using scheme_type = Scheme;
+
+  // Takes the fluid's particles (fluid, wall, dummy: the tank without the structure), its
+  // parameters, the structure (with its boundary conditions already set) and the coupling
+  // settings. Throws InvalidInput if the two spacings differ, the parameters are invalid, or a
+  // fluid particle overlaps the structure.
+  FsiCoupler(ParticleSet<dimension, scalar_type> fluid_particles, typename Fluid::parameters_type fluid_parameters,
+             Solid solid, CouplingParameters coupling = {}, Scheme scheme = {})
+      : c_(coupling),
+        scheme_(scheme),
+        solid_(std::move(solid)),
+        offset_(fluid_particles.size()),
+        fluid_(with_structure(std::move(fluid_particles), fluid_parameters, solid_, c_, normal_, on_surface_),
+               fluid_parameters),
+        search_(c_.interface_radius_ratio * fluid_parameters.l0 + 0.5 * fluid_parameters.l0) {
+    if (c_.partial_wetting_correction)
+      full_weight_ = full_wetting_weight<Weight, dimension, scalar_type>(fluid_.parameters().l0, re());
+    structure_acceleration_.assign(solid_.particles().size(), vec_type::Zero());
+    load_.assign(solid_.particles().size(), vec_type::Zero());
+    interface_pressure_.assign(solid_.particles().size(), 0);
+    sync_walls();
+  }
+
+  // One coupled step of the fluid's time step. Throws SimulationError (from either solver, or
+  // when a sub-iterated step does not converge) with the step and time.
+  void step() {
+    using clock = std::chrono::steady_clock;
+    sync_walls();
+    if (c_.interface_acceleration) {
+      find_candidates();
+      interface_accelerations<Weight>(solid_.particles().positions(), structure_acceleration_, on_surface_,
+                                      fluid_.particles(), candidates_, re(), fluid_.external_acceleration(),
+                                      weight_sum_);
+    }
+    if constexpr (Scheme::iterative) {
+      fluid_start_ = fluid_;
+      solid_start_ = solid_;
+    }
+    velocity_start_ = solid_.particles().velocities();
+
+    auto t0 = clock::now();
+    fluid_.step();
+    auto t1 = clock::now();
+    fluid_seconds_ += std::chrono::duration<double>(t1 - t0).count();
+    const double dt = fluid_.last_dt();
+    compute_loads(load_);
+    substeps_ = advance_structure(dt, load_);
+    iterations_ = 1;
+    if constexpr (Scheme::iterative) iterate(dt);
+
+    const auto& v = solid_.particles().velocities();
+    for (std::size_t s = 0; s < v.size(); ++s) structure_acceleration_[s] = (v[s] - velocity_start_[s]) / dt;
+    ++step_count_;
+  }
+
+  // Steps until the fluid's time reaches end_time.
+  void advance_to(double end_time) {
+    while (time() < end_time - 1e-12 * std::max(1.0, std::abs(end_time))) step();
+  }
+
+  double time() const { return fluid_.time(); }
+  long long step_count() const { return step_count_; }
+  Fluid& fluid() { return fluid_; }
+  const Fluid& fluid() const { return fluid_; }
+  Solid& solid() { return solid_; }
+  const Solid& solid() const { return solid_; }
+  const CouplingParameters& parameters() const { return c_; }
+  const Scheme& scheme() const { return scheme_; }
+
+  // Structure particle s is particle structure_offset() + s of the fluid's set.
+  std::size_t structure_offset() const { return offset_; }
+  // Per structure particle: the fluid's load (N, per unit thickness in 2D), the interface
+  // pressure of eq 18, the outward normal and whether it is on the surface.
+  const VecArray<dimension, scalar_type>& interface_force() const { return load_; }
+  const std::vector<scalar_type>& interface_pressure() const { return interface_pressure_; }
+  const VecArray<dimension, scalar_type>& normals() const { return normal_; }
+  const std::vector<std::uint8_t>& on_surface() const { return on_surface_; }
+  vec_type total_interface_force() const {
+    vec_type sum = vec_type::Zero();
+    for (const auto& f : load_) sum += f;
+    return sum;
+  }
+
+  // Structure sub-steps and coupling iterations of the last step; wall-clock seconds spent in
+  // the fluid and in the structure so far.
+  int last_substeps() const { return substeps_; }
+  int last_iterations() const { return iterations_; }
+  double fluid_seconds() const { return fluid_seconds_; }
+  double solid_seconds() const { return solid_seconds_; }
+
+ private:
+  using Weight = typename Fluid::weight_type;
+
+  double re() const { return c_.interface_radius_ratio * fluid_.parameters().l0; }
+
+  // The fluid's particle set with the structure appended (wall on its surface, dummy inside).
+  static ParticleSet<dimension, scalar_type> with_structure(ParticleSet<dimension, scalar_type> set,
+                                                            const typename Fluid::parameters_type& fp,
+                                                            const Solid& solid, const CouplingParameters& c,
+                                                            VecArray<dimension, scalar_type>& normal,
+                                                            std::vector<std::uint8_t>& on_surface) {
+    c.validate();
+    fp.validate();
+    const double l0_f = fp.l0, l0_s = solid.parameters().l0;
+    if (std::abs(l0_f - l0_s) > 1e-9 * l0_f)
+      detail::throw_invalid("FsiCoupler", "the fluid and the structure have different particle spacings (l0 = " +
+                                              std::to_string(l0_f) + " and " + std::to_string(l0_s) + " m)");
+    const auto& sp = solid.particles();
+    surface_of(solid, c, normal, on_surface);
+    const std::size_t start = set.size();
+    set.resize(start + sp.size());
+    for (std::size_t s = 0; s < sp.size(); ++s) {
+      set.positions()[start + s] = sp.positions()[s];
+      set.velocities()[start + s] = sp.velocities()[s];
+      set.kinds()[start + s] = on_surface[s] ? ParticleKind::wall : ParticleKind::dummy;
+    }
+    return set;
+  }
+
+  static void surface_of(const Solid& solid, const CouplingParameters& c, VecArray<dimension, scalar_type>& normal,
+                         std::vector<std::uint8_t>& on_surface) {
+    const auto& p = solid.parameters();
+    const double n0 = ideal_lattice_constants<dimension, typename Solid::weight_type>(p.l0, p.re()).n0;
+    structure_normals(solid.bonds(), solid.particles().positions(), n0, c.surface_threshold, normal, on_surface);
+  }
+
+  // The structure as the fluid's moving wall: positions, velocities, surface.
+  void sync_walls() {
+    surface_of(solid_, c_, normal_, on_surface_);
+    auto& set = fluid_.particles();
+    const auto& sp = solid_.particles();
+    for (std::size_t s = 0; s < sp.size(); ++s) {
+      set.positions()[offset_ + s] = sp.positions()[s];
+      set.velocities()[offset_ + s] = sp.velocities()[s];
+      set.kinds()[offset_ + s] = on_surface_[s] ? ParticleKind::wall : ParticleKind::dummy;
+    }
+  }
+
+  void find_candidates() {
+    QueryOptions opt;
+    search_.build(fluid_.particles().positions());
+    search_.query(solid_.particles().positions(), candidates_, opt);
+  }
+
+  void compute_loads(VecArray<dimension, scalar_type>& load) {
+    find_candidates();
+    interface_loads<Weight>(solid_.particles().positions(), normal_, on_surface_, fluid_.particles(),
+                            fluid_.pressure(), candidates_, fluid_.parameters().l0, re(), full_weight_, load,
+                            interface_pressure_);
+  }
+
+  int advance_structure(double dt, const VecArray<dimension, scalar_type>& load) {
+    const auto t0 = std::chrono::steady_clock::now();
+    solid_.external_force() = load;
+    const int substeps = solid_.advance_by(dt);
+    solid_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return substeps;
+  }
+
+  // SubIterated: fixed point on the interface load with Aitken relaxation (coupling_schemes.hpp).
+  void iterate(double dt) {
+    double omega = scheme_.initial_relaxation;
+    bool have_previous = false;
+    for (int it = 1; it <= scheme_.max_iterations; ++it) {
+      fluid_ = *fluid_start_;
+      const auto& x_start = solid_start_->particles().positions();
+      const auto& x_end = solid_.particles().positions();
+      auto& fset = fluid_.particles();
+      for (std::size_t s = 0; s < x_end.size(); ++s) fset.velocities()[offset_ + s] = (x_end[s] - x_start[s]) / dt;
+      const auto t0 = std::chrono::steady_clock::now();
+      fluid_.step();
+      fluid_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      compute_loads(trial_);
+      residual_.resize(trial_.size());
+      double r2 = 0, f2 = 0;
+      for (std::size_t s = 0; s < trial_.size(); ++s) {
+        residual_[s] = trial_[s] - load_[s];
+        r2 += residual_[s].squaredNorm();
+        f2 += trial_[s].squaredNorm();
+      }
+      iterations_ = it + 1;
+      if (std::sqrt(r2) <= scheme_.tolerance * std::sqrt(f2)) return;
+      if (have_previous) {
+        double num = 0, den = 0;
+        for (std::size_t s = 0; s < residual_.size(); ++s) {
+          const vec_type d = residual_[s] - previous_residual_[s];
+          num += previous_residual_[s].dot(d);
+          den += d.squaredNorm();
+        }
+        if (den > 0) omega = -omega * num / den;
+      }
+      for (std::size_t s = 0; s < load_.size(); ++s) load_[s] += omega * residual_[s];
+      previous_residual_ = residual_;
+      have_previous = true;
+      solid_ = *solid_start_;
+      substeps_ = advance_structure(dt, load_);
+    }
+    throw SimulationError("FsiCoupler: the sub-iterated coupling did not converge in " +
+                              std::to_string(scheme_.max_iterations) + " iterations at step " +
+                              std::to_string(step_count_ + 1) + " (t = " + std::to_string(fluid_.time()) + ")",
+                          step_count_ + 1, fluid_.time(), -1);
+  }
+
+  CouplingParameters c_;
+  Scheme scheme_;
+  Solid solid_;
+  std::size_t offset_;
+  VecArray<dimension, scalar_type> normal_;
+  std::vector<std::uint8_t> on_surface_;
+  Fluid fluid_;
+  CellListSearch<dimension, scalar_type> search_;
+  BasicNeighborList<scalar_type> candidates_;
+  VecArray<dimension, scalar_type> load_, trial_, residual_, previous_residual_;
+  VecArray<dimension, scalar_type> structure_acceleration_, velocity_start_;
+  std::vector<scalar_type> interface_pressure_, weight_sum_;
+  std::optional<Fluid> fluid_start_;  // SubIterated: the state at t^n
+  std::optional<Solid> solid_start_;
+  long long step_count_ = 0;
+  int substeps_ = 0, iterations_ = 0;
+  double fluid_seconds_ = 0, solid_seconds_ = 0;
+  scalar_type full_weight_ = 0;
+};
+
+}  // namespace mpsfsi
