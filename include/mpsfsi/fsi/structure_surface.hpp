@@ -18,8 +18,8 @@ namespace mpsfsi {
 // not hide each other's surfaces.
 //
 // A particle is on the surface when |g_i| >= threshold n0, n0 being the number density of a full
-// neighbourhood. On a flat face (re = 2.1 l0) the outer layer has |g|/n0 = 0.28 in 2D and 0.26 in
-// 3D, the layer beneath it 0.008 and 0.006, so the default threshold 0.1 picks exactly the outer
+// neighbourhood. On a flat face (re = 2.1 l0) the outer layer has |g|/n0 = 0.28 in 2D and 0.21 in
+// 3D, the layer beneath it below 0.01 in both, so the default threshold 0.1 picks exactly the outer
 // layer. Interior particles get a zero normal.
 template <int Dim, class Scalar>
 void structure_normals(const BondList<Dim, Scalar>& bonds, const VecArray<Dim, Scalar>& x, Scalar n0,
