@@ -51,6 +51,8 @@
 
 #include "mpsfsi/core/filter_neighbors.hpp"
 #include "mpsfsi/scenes/dam_break.hpp"
+#include "mpsfsi/scenes/elastic_gate.hpp"
+#include "mpsfsi/scenes/hydrostatic_plate.hpp"
 #include "mpsfsi/scenes/lattice.hpp"
 #include "mpsfsi/scenes/oscillating_plate.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"

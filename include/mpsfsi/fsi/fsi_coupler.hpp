@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -230,6 +232,7 @@ class FsiCoupler {
         f2 += trial_[s].squaredNorm();
       }
       iterations_ = it + 1;
+      if (std::getenv("MPSFSI_DEBUG_FSI")) std::fprintf(stderr, "step %lld it %d r/F %.3e omega %.3f\n", step_count_ + 1, it, std::sqrt(r2 / f2), omega);
       if (std::sqrt(r2) <= scheme_.tolerance * std::sqrt(f2)) return;
       if (have_previous) {
         double num = 0, den = 0;
