@@ -3,8 +3,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -68,6 +66,7 @@ class FsiCoupler {
         search_(c_.interface_radius_ratio * fluid_parameters.l0 + 0.5 * fluid_parameters.l0) {
     if (c_.partial_wetting_correction)
       full_weight_ = full_wetting_weight<Weight, dimension, scalar_type>(fluid_.parameters().l0, re());
+    last_omega_ = initial_omega(scheme_);
     structure_acceleration_.assign(solid_.particles().size(), vec_type::Zero());
     load_.assign(solid_.particles().size(), vec_type::Zero());
     interface_pressure_.assign(solid_.particles().size(), 0);
@@ -212,7 +211,9 @@ class FsiCoupler {
 
   // SubIterated: fixed point on the interface load with Aitken relaxation (coupling_schemes.hpp).
   void iterate(double dt) {
-    double omega = scheme_.initial_relaxation;
+    // Start from the relaxation the last step converged with (bounded): the added-mass ratio
+    // that sets it changes slowly.
+    double omega = std::clamp(last_omega_, 0.05, 1.0);
     bool have_previous = false;
     for (int it = 1; it <= scheme_.max_iterations; ++it) {
       fluid_ = *fluid_start_;
@@ -232,8 +233,10 @@ class FsiCoupler {
         f2 += trial_[s].squaredNorm();
       }
       iterations_ = it + 1;
-      if (std::getenv("MPSFSI_DEBUG_FSI")) std::fprintf(stderr, "step %lld it %d r/F %.3e omega %.3f\n", step_count_ + 1, it, std::sqrt(r2 / f2), omega);
-      if (std::sqrt(r2) <= scheme_.tolerance * std::sqrt(f2)) return;
+      if (std::sqrt(r2) <= scheme_.tolerance * std::sqrt(f2)) {
+        last_omega_ = omega;
+        return;
+      }
       if (have_previous) {
         double num = 0, den = 0;
         for (std::size_t s = 0; s < residual_.size(); ++s) {
@@ -255,6 +258,12 @@ class FsiCoupler {
                           step_count_ + 1, fluid_.time(), -1);
   }
 
+  template <class S>
+  static double initial_omega(const S& s) {
+    if constexpr (S::iterative) return s.initial_relaxation;
+    return 1.0;
+  }
+
   CouplingParameters c_;
   Scheme scheme_;
   Solid solid_;
@@ -273,6 +282,7 @@ class FsiCoupler {
   int substeps_ = 0, iterations_ = 0;
   double fluid_seconds_ = 0, solid_seconds_ = 0;
   scalar_type full_weight_ = 0;
+  double last_omega_ = 1.0;
 };
 
 }  // namespace mpsfsi
