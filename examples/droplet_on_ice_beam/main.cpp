@@ -18,6 +18,7 @@
 #include <string>
 
 #include <mpsfsi/fluid/fluid_solver.hpp>
+#include <mpsfsi/fracture/failure_criteria.hpp>
 #include <mpsfsi/fsi/fsi_coupler.hpp>
 #include <mpsfsi/io/csv_writer.hpp>
 #include <mpsfsi/io/progress.hpp>
@@ -97,9 +98,9 @@ void write_beam_snapshot(const std::string& path, Solid& beam) {
   const auto& stress = beam.stresses();
   const auto& x = out.positions();
   for (std::size_t i = 0; i < x.size(); ++i) {
-    const auto& t = stress[i];
-    const double sigma1 = 0.5 * (t(0, 0) + t(1, 1)) + std::hypot(0.5 * (t(0, 0) - t(1, 1)), t(0, 1));
-    csv.row({x[i][0], x[i][1], t(0, 0), sigma1, beam.bonds().damage(i)});
+    Vec<2> direction;
+    const double sigma1 = MaxPrincipalStress::principal<2, double>(stress[i], direction);
+    csv.row({x[i][0], x[i][1], stress[i](0, 0), sigma1, beam.bonds().damage(i)});
   }
 }
 

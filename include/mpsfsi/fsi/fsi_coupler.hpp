@@ -63,14 +63,14 @@ class FsiCoupler {
         offset_(fluid_particles.size()),
         fluid_(with_structure(std::move(fluid_particles), fluid_parameters, solid_, c_, normal_, on_surface_),
                fluid_parameters),
-        search_(c_.interface_radius_ratio * fluid_parameters.l0 + 0.5 * fluid_parameters.l0) {
+        search_(c_.interface_radius_ratio * fluid_parameters.l0 + 0.5 * fluid_parameters.l0),
+        structure_n0_(structure_n0(solid_)) {
     if (c_.partial_wetting_correction)
       full_weight_ = full_wetting_weight<Weight, dimension, scalar_type>(fluid_.parameters().l0, re());
     last_omega_ = initial_omega(scheme_);
     structure_acceleration_.assign(solid_.particles().size(), vec_type::Zero());
     load_.assign(solid_.particles().size(), vec_type::Zero());
     interface_pressure_.assign(solid_.particles().size(), 0);
-    sync_walls();
   }
 
   // One coupled step of the fluid's time step. Throws SimulationError (from either solver, or
@@ -158,7 +158,7 @@ class FsiCoupler {
       detail::throw_invalid("FsiCoupler", "the fluid and the structure have different particle spacings (l0 = " +
                                               std::to_string(l0_f) + " and " + std::to_string(l0_s) + " m)");
     const auto& sp = solid.particles();
-    surface_of(solid, c, normal, on_surface);
+    structure_normals(solid.bonds(), sp.positions(), structure_n0(solid), c.surface_threshold, normal, on_surface);
     const std::size_t start = set.size();
     set.resize(start + sp.size());
     for (std::size_t s = 0; s < sp.size(); ++s) {
@@ -169,16 +169,16 @@ class FsiCoupler {
     return set;
   }
 
-  static void surface_of(const Solid& solid, const CouplingParameters& c, VecArray<dimension, scalar_type>& normal,
-                         std::vector<std::uint8_t>& on_surface) {
+  // Number density of a full neighbourhood of the structure's lattice: the scale of the surface test.
+  static scalar_type structure_n0(const Solid& solid) {
     const auto& p = solid.parameters();
-    const double n0 = ideal_lattice_constants<dimension, typename Solid::weight_type>(p.l0, p.re()).n0;
-    structure_normals(solid.bonds(), solid.particles().positions(), n0, c.surface_threshold, normal, on_surface);
+    return ideal_lattice_constants<dimension, typename Solid::weight_type>(p.l0, p.re()).n0;
   }
 
   // The structure as the fluid's moving wall: positions, velocities, surface.
   void sync_walls() {
-    surface_of(solid_, c_, normal_, on_surface_);
+    structure_normals(solid_.bonds(), solid_.particles().positions(), structure_n0_, c_.surface_threshold, normal_,
+                      on_surface_);
     auto& set = fluid_.particles();
     const auto& sp = solid_.particles();
     for (std::size_t s = 0; s < sp.size(); ++s) {
@@ -272,6 +272,7 @@ class FsiCoupler {
   std::vector<std::uint8_t> on_surface_;
   Fluid fluid_;
   CellListSearch<dimension, scalar_type> search_;
+  scalar_type structure_n0_;
   BasicNeighborList<scalar_type> candidates_;
   VecArray<dimension, scalar_type> load_, trial_, residual_, previous_residual_;
   VecArray<dimension, scalar_type> structure_acceleration_, velocity_start_;

@@ -9,6 +9,7 @@
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
+#include "mpsfsi/scenes/tank.hpp"
 
 namespace mpsfsi::scenes {
 
@@ -105,10 +106,10 @@ struct ElasticGate {
     lower[1] = y0;
     upper[1] = y1;
     if constexpr (Dim == 3) upper[2] = z;
-    auto set = material_block<Dim>(lower, upper, l0);
+    ParticleSet<Dim> set;
+    add_block(set, lower, upper, l0, kind);
+    if (wet_axis < 0) return set;
     for (std::size_t i = 0; i < set.size(); ++i) {
-      set.kinds()[i] = kind;
-      if (wet_axis < 0) continue;
       const double c = set.positions()[i][wet_axis];
       const double face = wet_side > 0 ? upper[wet_axis] - l0 / 2 : lower[wet_axis] + l0 / 2;
       if (std::abs(c - face) < l0 / 4) set.kinds()[i] = ParticleKind::wall;

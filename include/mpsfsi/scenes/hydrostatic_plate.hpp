@@ -8,6 +8,7 @@
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
+#include "mpsfsi/scenes/tank.hpp"
 
 namespace mpsfsi::scenes {
 
@@ -81,8 +82,8 @@ struct HydrostaticPlate {
       detail::throw_invalid("scenes::HydrostaticPlate", "l0 must be positive and at most half the plate thickness");
   }
   static ParticleSet<2> lattice_region(double x0, double x1, double y0, double y1, double l0, ParticleKind kind) {
-    auto set = material_block<2>(Vec<2>(x0, y0), Vec<2>(x1, y1), l0);
-    for (auto& k : set.kinds()) k = kind;
+    ParticleSet<2> set;
+    add_block(set, Vec<2>(x0, y0), Vec<2>(x1, y1), l0, kind);
     return set;
   }
 };
