@@ -54,6 +54,7 @@ struct Options {
   double courant = 0.4;
   double bond_viscosity = 0.2;  // damps the grid-scale ringing of bond cuts (SolidParameters)
   bool average_failure_stress = true;  // SolidParameters::average_failure_stress
+  bool failure_stress_at_surface = true;  // SolidParameters::failure_stress_at_surface
   double contact_damping = 0;          // SolidParameters::contact_damping_ratio
   std::string out;          // output directory; empty: no files
   bool progress = false;
@@ -175,6 +176,7 @@ Result run(const IceBeamCase& c, const Options& o) {
   p.courant = o.courant;
   p.bond_viscosity = o.bond_viscosity;
   p.average_failure_stress = o.average_failure_stress;
+  p.failure_stress_at_surface = o.failure_stress_at_surface;
   p.contact_damping_ratio = o.contact_damping;
   p.max_courant = std::max(p.max_courant, o.courant);
   ElasticSolver<Dim, BrittleSolidPolicies<Dim>> s(set, p, body);

@@ -7,7 +7,7 @@
 // and a summary CSV; plot.py renders the PNGs (Figs 5-7).
 //
 //   three_point_bending [--case all|02|03|04|05|10] [--dim 2|3] [--l0 m] [--speed m/s]
-//                       [--plane stress|strain] [--point-stress] [--out dir] [--no-output]
+//                       [--plane stress|strain] [--point-stress] [--centre-stress] [--out dir] [--no-output]
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -35,10 +35,14 @@ Options parse(int argc, char** argv) {
       o.run.average_failure_stress = false;
       continue;
     }
+    if (key == "--centre-stress") {  // the criterion reads the stress at particle centres
+      o.run.failure_stress_at_surface = false;
+      continue;
+    }
     if (key == "--help" || a + 1 >= argc) {
       std::fprintf(stderr,
                    "usage: three_point_bending [--case all|02|03|04|05|10] [--dim 2|3] [--l0 m] [--speed m/s] "
-                   "[--plane stress|strain] [--point-stress] [--out dir] [--no-output]\n");
+                   "[--plane stress|strain] [--point-stress] [--centre-stress] [--out dir] [--no-output]\n");
       std::exit(key == "--help" ? 0 : 2);
     }
     const std::string v = argv[++a];

@@ -94,4 +94,61 @@ TEST_CASE_TEMPLATE("fracture.crack_plane: a bar under uniform tension breaks jus
   }
 }
 
+
+// The criterion reads the stress on the body's surface, not at the outer particles' centres l0/2
+// inside it (SolidParameters::failure_stress_at_surface). Pure bending, imposed exactly (the
+// displacement is quadratic, which the second-order fit reproduces): sigma_xx = -E kappa y',
+// largest on the bottom face y' = -H/2, where the bottom particles' centres read (H - l0)/H of it
+// (5/6 here). Set sigma_f just below / above the surface value.
+TEST_CASE_TEMPLATE("fracture.crack_plane: under pure bending the criterion reads the stress at the surface", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  const double l0 = 0.005, height = 0.03, kappa = 0.1;  // curvature 1/m: strain 1.5e-3 at the faces
+  Vec<Dim> upper = Vec<Dim>::Constant(height);
+  upper[0] = 0.12;
+  const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
+  auto params = ice<Dim>(l0);
+  const double nu = params.poisson_ratio;
+  const auto deformed = [&](const Vec<Dim>& X) {  // exact pure bending, neutral axis y = H/2
+    const double x = X[0] - 0.06, y = X[1] - height / 2, z = Dim == 3 ? X[Dim - 1] - height / 2 : 0.0;
+    Vec<Dim> p = X;
+    p[0] += -kappa * x * y;
+    p[1] += 0.5 * kappa * (x * x + nu * (y * y - z * z));
+    if constexpr (Dim == 3) p[2] += kappa * nu * y * z;
+    return p;
+  };
+  const auto stress_at = [&](double y_from_axis) {  // sigma_1 on the mid-span section
+    Mat<Dim> f = Mat<Dim>::Identity();
+    f(0, 0) += -kappa * y_from_axis;
+    f(1, 1) += kappa * nu * y_from_axis;
+    if constexpr (Dim == 3) f(2, 2) += kappa * nu * y_from_axis;
+    Vec<Dim> dir;
+    return MaxPrincipalStress::principal<Dim, double>(detail::cauchy_from_svk<Dim>(f, params.lame()), dir);
+  };
+  const double surface = stress_at(-height / 2), centre = stress_at(-height / 2 + l0 / 2);
+  REQUIRE(centre < 0.9 * surface);
+  for (const bool at_surface : {true, false})
+    for (const double factor : {0.99, 1.01}) {  // the surface stress as a fraction of sigma_f
+      params.tensile_strength = surface / factor;
+      params.failure_stress_at_surface = at_surface;
+      ElasticSolver<Dim, Brittle<Dim>> s(block, params);
+      for (std::size_t i = 0; i < block.size(); ++i) {
+        s.particles().positions()[i] = deformed(block.positions()[i]);
+        if (block.positions()[i][0] < 0.02 || block.positions()[i][0] > 0.1) s.clamp(i);
+      }
+      s.step();
+      CAPTURE(at_surface);
+      CAPTURE(factor);
+      if (at_surface && factor > 1) {
+        REQUIRE(s.cut_bonds() > 0);
+        // The first failure is on the bottom face, with a vertical crack plane.
+        const auto& first = s.failure_log().front();
+        CHECK(s.reference_positions()[first.particle][1] < l0);
+        CHECK(std::abs(first.normal[0]) > 0.99);
+      } else {
+        CHECK(s.cut_bonds() == 0);
+      }
+    }
+}
+
 }

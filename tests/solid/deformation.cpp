@@ -57,6 +57,37 @@ TEST_CASE_TEMPLATE("solid.deformation: the fit reproduces affine and quadratic m
   CHECK(worst < 1e-10);
 }
 
+TEST_CASE_TEMPLATE("solid.deformation: gradient_at reads the fitted field's gradient away from the particle",
+                   T, std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  Block<Dim> block(0.01);
+  // x = X + k (X_0 X_1, X_0^2 + X_1^2, ...): every component quadratic, so the second-order fit
+  // is exact and its gradient at X_i + r must be the field's gradient there (linear in r).
+  const double k = 2.0;
+  const auto field_gradient = [&](const Vec<Dim>& X) {
+    Mat<Dim> f = Mat<Dim>::Identity();
+    f(0, 0) += k * X[1];
+    f(0, 1) += k * X[0];
+    f(1, 0) += 2 * k * X[0];
+    f(1, 1) += 2 * k * X[1];
+    return f;
+  };
+  VecArray<Dim> x(block.set.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Vec<Dim>& X = block.set.positions()[i];
+    x[i] = X;
+    x[i][0] += k * X[0] * X[1];
+    x[i][1] += k * (X[0] * X[0] + X[1] * X[1]);
+  }
+  double worst = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Vec<Dim> r = Vec<Dim>::Constant(0.005);  // l0/2 out along the diagonal
+    const Mat<Dim> f = block.fit.gradient_at(block.fit.affine(x, block.bonds, i), r);
+    worst = std::max(worst, (f - field_gradient(block.set.positions()[i] + r)).cwiseAbs().maxCoeff());
+  }
+  CHECK(worst < 1e-10);
+}
+
 TEST_CASE("solid.deformation: a particle whose bonds span one direction stays undeformed across it") {
   ParticleSet<2> chain;
   for (int k = 0; k < 4; ++k) chain.add(Vec<2>(0.01 * k, 0));

@@ -28,6 +28,10 @@ struct NoContact {
   void initialize(std::size_t, Scalar, Scalar, Scalar) {}
   template <class X, class B, class F>
   void add_forces(const X&, const X&, const B&, F&) {}
+  template <class X>
+  bool touching(const X&, std::size_t) const {
+    return false;
+  }
   template <class X, class B>
   double energy(const X&, const B&) const { return 0; }
   std::size_t active_pairs() const { return 0; }
@@ -92,6 +96,15 @@ class PenaltyContact {
         if (d < distance_) total += Scalar(0.25) * stiffness_ * (distance_ - d) * (distance_ - d);  // each pair twice
       }
     return total;
+  }
+
+  // Whether particle i is pressed by a particle it is not bonded to (within the contact
+  // distance), on the list of the last add_forces.
+  bool touching(const VecArray<Dim, Scalar>& x, std::size_t i) const {
+    if (i >= list_.num_queries()) return false;
+    for (Offset k = list_.begin(i); k < list_.end(i); ++k)
+      if ((x[i] - x[static_cast<std::size_t>(list_.indices[k])]).squaredNorm() < distance_ * distance_) return true;
+    return false;
   }
 
   std::size_t active_pairs() const { return active_; }

@@ -100,6 +100,22 @@ class DeformationFit {
     return affine(x, bonds, i).template leftCols<Dim>();
   }
 
+  // Deformation gradient of the fitted map a = A_i at reference offset r from particle i: the
+  // derivative of A_i phi(r), F(r) = A_lin + A_quad dq(r)/dr / l0, linear in r (F(0) = A_lin).
+  // The failure criterion uses it to read the stress at the body's surface, l0/2 outside the
+  // outermost particles.
+  mat_type gradient_at(const affine_type& a, const vec_type& r) const {
+    Eigen::Matrix<Scalar, quad, Dim> dq = Eigen::Matrix<Scalar, quad, Dim>::Zero();
+    int k = 0;
+    for (int p = 0; p < Dim; ++p)
+      for (int q = p; q < Dim; ++q, ++k) {
+        // d/dr of (p == q ? r_p^2 / 2 : r_p r_q), divided by l0
+        dq(k, p) += r[q] * inv_l0_;
+        if (p != q) dq(k, q) += r[p] * inv_l0_;
+      }
+    return a.template leftCols<Dim>() + a.template rightCols<quad>() * dq;
+  }
+
   // q(r)/l0: the quadratic part of phi.
   quad_type quadratic(const vec_type& r) const {
     quad_type q;

@@ -66,7 +66,13 @@ struct SolidParameters {
   // Cw = crack_width_ratio, 0 selecting sqrt(d)/2; l0/2 <= Cw l0 <= re.
   Scalar tensile_strength = std::numeric_limits<Scalar>::infinity();
   Scalar crack_width_ratio = 0;
+  // The stress the criterion reads: averaged over the particle and its intact bonds
+  // (average_failure_stress), and, with a stress model that fits a second-order field
+  // (CorrectedTotalLagrangian), sampled at the body's surface for surface particles: l0/2 along
+  // the outward normal, where the continuum's surface is, instead of at the particle centre
+  // (elastic_solver.hpp, apply_failure).
   bool average_failure_stress = true;
+  bool failure_stress_at_surface = true;
   // A blow-up is declared when a particle moves faster than this multiple of the P-wave speed.
   Scalar blowup_speed_factor = Scalar(1);
 
