@@ -442,8 +442,10 @@ class ElasticSolver {
   //   cracks 3-4 l0 beside the first in three of the five bending cases. Crack faces are not
   //   sampled outside: at a crack tip the field is singular, and a fit extrapolated into the
   //   crack reads noise (it branched the crack of the bending study at mid-height). Nor are
-  //   surface particles in contact (supports, indenters, fragments): a fit extrapolated to a
-  //   face under point loads reads their spikes (it cracked the top beside the indenter).
+  //   loaded surface particles, in contact (supports, indenters, fragments) or carrying an
+  //   external force (the FSI load): a fit extrapolated to a face under point loads reads their
+  //   spikes (it cracked the top beside the indenter, and shattered the ice beam under the
+  //   droplet). The read-out is meant for traction-free faces.
   const MatArray<Dim, double>& failure_stresses() {
     const auto& point = stresses();
     const std::size_t n = set_.size();
@@ -463,7 +465,7 @@ class ElasticSolver {
         MPSFSI_OMP(parallel for schedule(static))
         for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
           const auto i = static_cast<std::size_t>(ii);
-          sampled_[i] = on_surface_[i] && !contact_.touching(x, i) ? 1 : 0;
+          sampled_[i] = on_surface_[i] && !contact_.touching(x, i) && external_[i].isZero(0.0) ? 1 : 0;
           surface_stress_[i] =
               sampled_[i] != 0
                   ? detail::cauchy_from_svk(fit.gradient_at(fit.affine(x, bonds_, i), offset * reference_normal_[i]), lame)
