@@ -38,6 +38,7 @@
 #include "mpsfsi/solid/solid_parameters.hpp"
 #include "mpsfsi/fracture/crack_plane.hpp"
 #include "mpsfsi/fracture/failure_criteria.hpp"
+#include "mpsfsi/fracture/failure_stress.hpp"
 #include "mpsfsi/fsi/coupling_parameters.hpp"
 #include "mpsfsi/fsi/coupling_schemes.hpp"
 #include "mpsfsi/fsi/fsi_coupler.hpp"

@@ -17,7 +17,7 @@
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/fracture/crack_plane.hpp"
 #include "mpsfsi/fracture/failure_criteria.hpp"
-#include "mpsfsi/solid/structure_surface.hpp"
+#include "mpsfsi/fracture/failure_stress.hpp"
 #include "mpsfsi/kernels/lattice_constants.hpp"
 #include "mpsfsi/kernels/weight.hpp"
 #include "mpsfsi/solid/bonds.hpp"
@@ -427,85 +427,16 @@ class ElasticSolver {
     }
   }
 
-  // The stress tensor eq 27 reads, per particle.
-  // - average_failure_stress: averaged over the particle and its intact bonds, weights w0 and
-  //   the particle itself with the weight of a nearest neighbour: the stress of the material
-  //   around the particle rather than its own sample.
-  // - failure_stress_at_surface (a stress model with a second-order fit): a particle on the
-  //   body's outer surface (outward normal n_i from the bonds at the first failure check, so
-  //   imposed notches count and crack faces do not) reads its fitted field at X_i + (l0/2) n_i,
-  //   on the continuum's surface, instead of at its centre l0/2 inside it (the first-order error
-  //   in l0/h that made the bending study's peak load depend on l0). Averaged, it is averaged
-  //   only along the surface, over the surface particles of its face it is bonded to, each read at its own
-  //   surface point, so the read-out does not move inwards; and twice (a filter over +-4 l0 on a
-  //   flat face): with one pass, the grid-scale release wave of the first cut started second
-  //   cracks 3-4 l0 beside the first in three of the five bending cases. Crack faces are not
-  //   sampled outside: at a crack tip the field is singular, and a fit extrapolated into the
-  //   crack reads noise (it branched the crack of the bending study at mid-height). Nor are
-  //   loaded surface particles, in contact (supports, indenters, fragments) or carrying an
-  //   external force (the FSI load): a fit extrapolated to a face under point loads reads their
-  //   spikes (it cracked the top beside the indenter, and shattered the ice beam under the
-  //   droplet). The read-out is meant for traction-free faces.
+  // The stress eq 27 reads (failure_stress.hpp): averaged, and on traction-free outer faces
+  // read at the surface when the stress model has a second-order fit.
   const MatArray<Dim, double>& failure_stresses() {
-    const auto& point = stresses();
-    const std::size_t n = set_.size();
-    const std::uint8_t* surface = nullptr;  // set when surface particles are sampled
-    if constexpr (detail::has_deformation_fit<stress_model_type>::value) {
-      if (p_.failure_stress_at_surface) {
-        const auto& fit = model_.fit();
-        if (!surface_current_) {
-          structure_normals(bonds_, reference_, context_.n0, kSurfaceThreshold, reference_normal_, on_surface_);
-          surface_current_ = true;
-        }
-        surface_stress_.resize(n);
-        const auto& x = set_.positions();
-        const auto lame = context_.lame;
-        const double offset = 0.5 * p_.l0;
-        sampled_.resize(n);
-        MPSFSI_OMP(parallel for schedule(static))
-        for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
-          const auto i = static_cast<std::size_t>(ii);
-          sampled_[i] = on_surface_[i] && !contact_.touching(x, i) && external_[i].isZero(0.0) ? 1 : 0;
-          surface_stress_[i] =
-              sampled_[i] != 0
-                  ? detail::cauchy_from_svk(fit.gradient_at(fit.affine(x, bonds_, i), offset * reference_normal_[i]), lame)
-                  : point[i];
-        }
-        surface = sampled_.data();
-      }
-    }
-    const auto& sampled = surface != nullptr ? surface_stress_ : point;
-    if (!p_.average_failure_stress) return sampled;
-    const double self_weight = Weight::value(p_.l0, p_.re());
-    // One averaging pass: interior particles over all their bonds (centre stresses), surface
-    // particles over their surface bonds (surface stresses from `in`).
-    const auto average = [&](const MatArray<Dim, double>& in, MatArray<Dim, double>& out, bool surface_only) {
-      out.resize(n);
-      MPSFSI_OMP(parallel for schedule(static))
-      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
-        const auto i = static_cast<std::size_t>(ii);
-        const bool along_surface = surface != nullptr && surface[i] != 0;
-        if (surface_only && !along_surface) {
-          out[i] = in[i];
-          continue;
-        }
-        mat_type sum = self_weight * in[i];
-        double weight = self_weight;
-        for (Offset b = bonds_.begin(i); b < bonds_.end(i); ++b) {
-          const double w = bonds_.weight(b);
-          const auto k = static_cast<std::size_t>(bonds_.neighbor(b));
-          if (w == 0 || (along_surface && (surface[k] == 0 || reference_normal_[i].dot(reference_normal_[k]) < kSameFace)))
-            continue;
-          sum += w * (along_surface ? in[k] : point[k]);
-          weight += w;
-        }
-        out[i] = sum / weight;
-      }
-    };
-    average(sampled, averaged_, false);
-    if (surface == nullptr) return averaged_;
-    average(averaged_, smoothed_, true);
-    return smoothed_;
+    const DeformationFit<Dim, double>* fit = nullptr;
+    if constexpr (detail::has_deformation_fit<stress_model_type>::value)
+      if (p_.failure_stress_at_surface) fit = &model_.fit();
+    const auto& x = set_.positions();
+    const auto loaded = [&](std::size_t i) { return contact_.touching(x, i) || !external_[i].isZero(0.0); };
+    return failure_readout_.read(stresses(), x, reference_, bonds_, fit, loaded,
+                                 {p_.l0, context_.n0, Weight::value(p_.l0, p_.re()), context_.lame, p_.average_failure_stress});
   }
 
   // Eq 27 at every particle; each failing particle, strongest first, cuts the bonds across its
@@ -592,18 +523,7 @@ class ElasticSolver {
     vec_type normal;
   };
   std::vector<Failing> failing_;
-  MatArray<Dim, double> averaged_;
-  // Surface sampling of the failure stress: outward normals of the reference configuration over
-  // the bonds at t = 0 (structure_surface.hpp's threshold), computed at the first failure check.
-  static constexpr double kSurfaceThreshold = 0.1;
-  // Surface particles average with bonded surface particles of the same face only (normals
-  // within 25 degrees): a narrow 3D beam's bottom face is within 2 l0 of its edges, whose samples
-  // lie on the side faces.
-  static constexpr double kSameFace = 0.9;
-  VecArray<Dim, double> reference_normal_;
-  std::vector<std::uint8_t> on_surface_, sampled_;
-  bool surface_current_ = false;
-  MatArray<Dim, double> surface_stress_, smoothed_;
+  FailureStressReadout<Dim> failure_readout_;
   std::vector<std::size_t> touched_, scratch_;
   std::vector<FailureEvent<Dim>> failure_log_;
   double first_failure_time_ = -1;

@@ -70,7 +70,7 @@ struct SolidParameters {
   // (average_failure_stress), and, with a stress model that fits a second-order field
   // (CorrectedTotalLagrangian), sampled at the body's surface for surface particles: l0/2 along
   // the outward normal, where the continuum's surface is, instead of at the particle centre
-  // (elastic_solver.hpp, apply_failure).
+  // (fracture/failure_stress.hpp).
   bool average_failure_stress = true;
   bool failure_stress_at_surface = true;
   // A blow-up is declared when a particle moves faster than this multiple of the P-wave speed.
