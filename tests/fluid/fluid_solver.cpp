@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "mpsfsi/fluid/fluid_solver.hpp"
 #include "mpsfsi/scenes/tank.hpp"
@@ -67,6 +69,72 @@ TEST_CASE("fluid.fluid_solver: a PPE that cannot converge is reported with step 
     CHECK(std::string(e.what()).find("did not converge") != std::string::npos);
   }
   CHECK(solver.step_count() == 0);  // the state is the last good one
+}
+
+namespace {
+
+// Fluid that touches no free surface: a block of `fluid_side` x `fluid_side` cells at `origin`,
+// inside a ring of dummy particles three spacings thick (n = n0 everywhere: no surface).
+void add_enclosed_fluid(ParticleSet<2>& set, const Vec<2>& origin, double fluid_side, double l0) {
+  const std::size_t start = set.size();
+  const double ring = 3 * l0;
+  scenes::add_block<2, double>(set, origin - Vec<2>(ring, ring), origin + Vec<2>(fluid_side + ring, fluid_side + ring),
+                               l0, ParticleKind::dummy);
+  for (std::size_t i = start; i < set.size(); ++i) {
+    const Vec<2> r = set.positions()[i] - origin;
+    if (r.minCoeff() > 0 && r.maxCoeff() < fluid_side) set.kinds()[i] = ParticleKind::fluid;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("fluid.fluid_solver: fluid that touches no free surface is an error, or left out if asked") {
+  // Such a region makes the PPE singular (pure Neumann): its pressure level is undetermined.
+  FluidParameters<2> p;
+  p.l0 = 0.005;
+  p.dt = 1e-4;
+  SUBCASE("a container filled to the top: a clear error naming a particle, state kept") {
+    ParticleSet<2> set;
+    add_enclosed_fluid(set, Vec<2>(0, 0), 0.03, p.l0);
+    FluidSolver<2> solver(std::move(set), p);
+    try {
+      solver.step();
+      FAIL("expected a SimulationError");
+    } catch (const SimulationError& e) {
+      CHECK(e.step() == 1);
+      CHECK(e.particle() >= 0);
+      CHECK(std::string(e.what()).find("touches no free surface") != std::string::npos);
+      CHECK(std::string(e.what()).find("36 particles") != std::string::npos);
+    }
+    CHECK(solver.step_count() == 0);
+  }
+  SUBCASE("zero_pressure: a trapped pocket is left out and the rest is solved as without it") {
+    // The small tank, and far from it two fluid particles trapped in dummies (as between the
+    // fragments of a breaking structure). Their rows come after the tank's, so the tank's system
+    // is the same with or without them.
+    p.enclosed_region = EnclosedRegion::zero_pressure;
+    ParticleSet<2> with_pocket = small_tank();
+    const std::size_t tank_size = with_pocket.size();
+    add_enclosed_fluid(with_pocket, Vec<2>(0.3, 0.3), 0.01, p.l0);
+    FluidSolver<2> alone(small_tank(), p), both(std::move(with_pocket), p);
+    alone.step();
+    both.step();
+    CHECK(alone.enclosed_particles().empty());
+    REQUIRE(both.enclosed_particles().size() == 4);
+    CHECK(both.steps_with_enclosed_regions() == 1);
+    for (const auto i : both.enclosed_particles()) {
+      CHECK(static_cast<std::size_t>(i) >= tank_size);
+      CHECK(both.pressure()[static_cast<std::size_t>(i)] == 0);
+    }
+    CHECK(both.last_solve().iterations == alone.last_solve().iterations);
+    double worst = 0, scale = 0;
+    for (std::size_t i = 0; i < tank_size; ++i) {
+      worst = std::max(worst, std::abs(both.pressure()[i] - alone.pressure()[i]));
+      scale = std::max(scale, std::abs(alone.pressure()[i]));
+    }
+    CHECK(scale > 0);
+    CHECK(worst <= 1e-12 * scale);  // round-off only: the same system
+  }
 }
 
 TEST_CASE("fluid.fluid_solver: a fluid at rest in free fall without walls falls at g") {

@@ -37,6 +37,37 @@ double gradient_ratio(const Block<Dim>& b, std::size_t i) {
 
 TEST_SUITE("fsi") {
 
+TEST_CASE("fsi.structure_surface: a particle cut loose, or between two cracks, is surface with a zero normal") {
+  const double l0 = 0.01;
+  Block<2> b(Vec<2>(0.1, 0.06), l0);
+  // Cut every bond of a deep interior particle (a loose fragment of one particle), and every
+  // bond crossing the lines x = 0.03 and x = 0.04 over the full height around a column between them (a
+  // sliver between two parallel cracks: bonds lost on both sides, |g| ~ 0).
+  const auto loose = scenes::select(b.set, [&](const Vec<2>& x) { return (x - Vec<2>(0.075, 0.035)).norm() < 1e-9; }).at(0);
+  for (Offset k = b.bonds.begin(loose); k < b.bonds.end(loose); ++k) b.bonds.cut(k);
+  for (std::size_t i = 0; i < b.set.size(); ++i)
+    for (Offset k = b.bonds.begin(i); k < b.bonds.end(i); ++k) {
+      const double xi = b.set.positions()[i][0], xj = b.set.positions()[static_cast<std::size_t>(b.bonds.neighbor(k))][0];
+      for (const double line : {0.03, 0.04})
+        if ((xi - line) * (xj - line) < 0) b.bonds.cut(k);
+    }
+  VecArray<2> normal;
+  std::vector<std::uint8_t> surface;
+  structure_normals(b.bonds, b.set.positions(), b.n0, 0.1, normal, surface);
+  CHECK(surface[loose] == 1);
+  CHECK(normal[loose].norm() == 0);
+  const auto sliver = scenes::select(b.set, [&](const Vec<2>& x) { return std::abs(x[0] - 0.035) < 1e-9 && std::abs(x[1] - 0.035) < 1e-9; }).at(0);
+  CHECK(surface[sliver] == 1);
+  CHECK(normal[sliver].norm() == 0);
+  // The crack faces beside the sliver keep their directed normals (into the cracks).
+  const auto face = scenes::select(b.set, [&](const Vec<2>& x) { return std::abs(x[0] - 0.025) < 1e-9 && std::abs(x[1] - 0.035) < 1e-9; }).at(0);
+  CHECK(surface[face] == 1);
+  CHECK((normal[face] - Vec<2>(1, 0)).norm() < 1e-12);
+  // Deep interior particles, away from both, stay interior.
+  const auto deep = scenes::select(b.set, [&](const Vec<2>& x) { return std::abs(x[0] - 0.065) < 1e-9 && std::abs(x[1] - 0.025) < 1e-9; }).at(0);
+  CHECK(surface[deep] == 0);
+}
+
 TEST_CASE("fsi.structure_surface: the outer layer of a 2D block is the surface with exact face normals") {
   const double l0 = 0.01;
   Block<2> b(Vec<2>(0.1, 0.06), l0);

@@ -12,6 +12,8 @@
 #include "mpsfsi/fluid/fluid_solver.hpp"
 #include "mpsfsi/fsi/fsi_coupler.hpp"
 #include "mpsfsi/scenes/hydrostatic_plate.hpp"
+#include "mpsfsi/scenes/solid_block.hpp"
+#include "mpsfsi/scenes/tank.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 #include "support/tolerance.hpp"
 
@@ -145,6 +147,88 @@ TEST_CASE("coupling schemes: where each is stable against the structure-to-fluid
   std::printf("load deviation over the last 10 ms: explicit 2.7: %s%.3f, explicit 27: %.3f, sub-iterated 1.0: %.3f\n",
               explicit_light.blew_up ? "blew up, " : "", explicit_light.max_load_deviation,
               explicit_heavy.max_load_deviation, iterated_light.max_load_deviation);
+}
+
+TEST_CASE("crack entry: a crack opened under water becomes surface and the water flows into it") {
+  // An ice block 0.1 m x 0.04 m on the floor of a tank 0.3 m wide, under 0.1 m of water, is
+  // cut through along x = 0.15 m (impose_crack: bonds only, the faces still touch), and its two
+  // halves are then moved apart at 0.05 m/s each (prescribed velocities: the structure is
+  // kinematic, so what is tested is the coupler, not the solid). After 0.2 s the crack is 0.02 m
+  // (4 l0) wide between its faces' outer particles.
+  const double l0 = 0.005, speed = 0.05, t_end = 0.2, t_settle = 0.5, crack_x = 0.15, top = 0.04;
+  ParticleSet<2> tank;
+  scenes::add_block<2, double>(tank, Vec<2>(0, 0), Vec<2>(0.1, 0.1), l0, ParticleKind::fluid);
+  scenes::add_block<2, double>(tank, Vec<2>(0.2, 0), Vec<2>(0.3, 0.1), l0, ParticleKind::fluid);
+  scenes::add_block<2, double>(tank, Vec<2>(0.1, top), Vec<2>(0.2, 0.1), l0, ParticleKind::fluid);
+  scenes::add_tank<2, double>(tank, Vec<2>(0.3, 0.15), l0);
+  SolidParameters<2> sp;
+  sp.l0 = l0;
+  sp.density = 917;
+  sp.youngs_modulus = 1e8;
+  sp.poisson_ratio = 0.3;
+  ElasticSolver<2> block(scenes::material_block<2>(Vec<2>(0.1, 0), Vec<2>(0.2, top), l0), sp);
+  const auto& x0 = block.particles().positions();
+  std::size_t crack_cuts = 0;
+  for (std::size_t i = 0; i < x0.size(); ++i)
+    if (std::abs(x0[i][0] - (crack_x + l0 / 2)) < 1e-9) crack_cuts += block.impose_crack(i, Vec<2>(1, 0));
+  REQUIRE(crack_cuts > 0);
+  for (std::size_t i = 0; i < x0.size(); ++i) block.prescribe_velocity(i, Vec<2>(x0[i][0] < crack_x ? -speed : speed, 0));
+  FluidParameters<2> fp;
+  fp.l0 = l0;
+  FsiCoupler<FluidSolver<2>, ElasticSolver<2>> coupler(std::move(tank), fp, std::move(block));
+  coupler.advance_to(t_end);
+  const double opened = coupler.time();
+  for (std::size_t i = 0; i < coupler.solid().particles().size(); ++i) coupler.solid().clamp(i);  // the crack stays open
+  // Settle, then average the pressure of the water in the crack over the last 0.1 s against
+  // the hydrostatic rho g (H - y), H the level the water's volume gives (the crack took
+  // 0.02 m x 0.04 m of it from a tank 0.3 m wide).
+  const double level = 0.1 - (2 * speed * opened) * top / 0.3;
+  double pressure_sum = 0, hydrostatic_sum = 0;
+  while (coupler.time() < t_settle) {
+    coupler.step();
+    if (coupler.time() < t_settle - 0.1) continue;
+    const auto& fluid = coupler.fluid().particles();
+    for (std::size_t i = 0; i < coupler.structure_offset(); ++i) {
+      const Vec<2> p = fluid.positions()[i];
+      if (fluid.kinds()[i] != ParticleKind::fluid || std::abs(p[0] - crack_x) > 1.5 * l0 || p[1] > top) continue;
+      pressure_sum += coupler.fluid().pressure()[i];
+      hydrostatic_sum += 1000 * 9.81 * (level - p[1]);
+    }
+  }
+
+  // The faces: surface (walls in the PPE) with normals into the crack, below the top corners.
+  const auto& xs = coupler.solid().particles().positions();
+  const auto& x_ref = coupler.solid().reference_positions();
+  double left_face = -1, right_face = 1;
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    const bool left = std::abs(x_ref[i][0] - (crack_x - l0 / 2)) < 1e-9, right = std::abs(x_ref[i][0] - (crack_x + l0 / 2)) < 1e-9;
+    if (!left && !right) continue;
+    CHECK(coupler.on_surface()[i] == 1);
+    if (x_ref[i][1] > l0 && x_ref[i][1] < top - 2 * l0)
+      CHECK(coupler.normals()[i].dot(Vec<2>(left ? 1 : -1, 0)) > 0.95);
+    (left ? left_face : right_face) = xs[i][0];
+  }
+  CHECK(right_face - left_face == doctest::Approx(l0 + 2 * speed * opened).epsilon(1e-9));
+
+  // The water in the crack: fluid particles between the faces and below the block's top. On the
+  // lattice the gap holds (width / l0 - 1) columns of (top / l0) rows; the count is held to 80 %
+  // of that (free-surface particles keep about l0/2 more from a wall than interior ones, and the
+  // water reaching the bottom last arrives within the last ~0.05 s).
+  const auto& fluid = coupler.fluid().particles();
+  int inside = 0;
+  for (std::size_t i = 0; i < coupler.structure_offset(); ++i) {
+    const Vec<2> p = fluid.positions()[i];
+    inside += fluid.kinds()[i] == ParticleKind::fluid && p[0] > left_face + l0 / 2 && p[0] < right_face - l0 / 2 && p[1] < top;
+  }
+  const double capacity = ((right_face - left_face) / l0 - 1) * (top / l0);
+  MESSAGE("crack " << (right_face - left_face) / l0 << " l0 wide: " << inside << " fluid particles inside (lattice capacity "
+                   << capacity << "); its water's pressure over the last 0.1 s, averaged: "
+                   << pressure_sum / hydrostatic_sum << " of hydrostatic; enclosed-region steps "
+                   << coupler.fluid().steps_with_enclosed_regions());
+  CHECK(inside >= 0.8 * capacity);
+  REQUIRE(hydrostatic_sum > 0);
+  // 3 %: the hydrostatic tank's criterion (issue 3) for the time-averaged pressure (measured 0.01 %).
+  CHECK(test::within_relative(pressure_sum, hydrostatic_sum, 0.03));
 }
 
 }  // TEST_SUITE

@@ -12,6 +12,13 @@ namespace mpsfsi {
 // What to do with negative pressures after the PPE solve.
 enum class NegativePressure { clamp_to_zero, keep };
 
+// What to do with an enclosed region: fluid or wall particles in the PPE, connected, none of
+// which touches the free surface, so their pressure level is undetermined (a singular PPE).
+// A closed container filled to the top is one (an error: the model needs a free surface); fluid
+// trapped between the fragments of a breaking structure, or the closed faces of a crack seen as
+// wall particles, are others (zero_pressure: left out of the PPE with P = 0, and counted).
+enum class EnclosedRegion { error, zero_pressure };
+
 // Physical and numerical parameters of FluidSolver. Lengths in m, times in s, SI throughout.
 // Radii are given as multiples of l0 (physics-notes section 1: KO96 use 2.1 l0 for density and
 // gradient, 4.0 l0 for the Laplacian; a widely used open code 2.1 / 3.1).
@@ -33,6 +40,7 @@ struct FluidParameters {
   bool density_term_compression_only = true;
   Scalar surface_beta = Scalar(0.97);       // free surface where n < beta n0
   NegativePressure negative_pressure = NegativePressure::clamp_to_zero;
+  EnclosedRegion enclosed_region = EnclosedRegion::error;
   // Time step: fixed when dt > 0, else automatic from the limits below.
   Scalar dt = 0;
   Scalar courant = Scalar(0.2);             // dt <= courant l0 / max|u|

@@ -136,7 +136,21 @@ class FluidSolver {
       const double deficit = p_.density_term_compression_only ? std::min(c_n_.n0 - nd[i], 0.0) : c_n_.n0 - nd[i];
       source_[i] = rho / dt * div_[i] + p_.gamma * rho / (dt * dt) * deficit / c_n_.n0;
     }
-    ppe_.assemble(x, kind, surface_, list_pw_, c_lap_, source_, a_, b_);
+    const bool leave_out = p_.enclosed_region == EnclosedRegion::zero_pressure;
+    ppe_.assemble(x, kind, surface_, list_pw_, c_lap_, source_, a_, b_, leave_out);
+    if (!ppe_.enclosed().empty()) {
+      const auto i = static_cast<std::size_t>(ppe_.enclosed().front());
+      if (!leave_out)
+        throw SimulationError("FluidSolver: at step " + std::to_string(step_count_ + 1) + " (t = " +
+                                  std::to_string(time_ + dt) + ") " + std::to_string(ppe_.enclosed().size()) +
+                                  " particles, among them particle " + std::to_string(i) + " (id " +
+                                  std::to_string(set_.ids()[i]) + ") at " + format_position(x[i]) +
+                                  ", form a region that touches no free surface: its pressure is undetermined "
+                                  "(a closed container filled to the top?). Set FluidParameters::enclosed_region "
+                                  "= EnclosedRegion::zero_pressure to leave such regions out with P = 0.",
+                              step_count_ + 1, time_ + dt, static_cast<long long>(i));
+      enclosed_steps_ += 1;
+    }
     timings_.ppe_assembly = lap_time(tick);
     auto& pressure = set_.field(pressure_);
     solution_.resize(static_cast<Eigen::Index>(ppe_.num_unknowns()));
@@ -212,6 +226,10 @@ class FluidSolver {
   // Acceleration added to fluid particles in the predictor (eq 9's coupling term f_S->F).
   VecArray<Dim>& external_acceleration() { return external_; }
   const SolveReport& last_solve() const { return report_; }
+  // Particles left out of the last step's PPE as an enclosed region (EnclosedRegion), and the
+  // number of steps so far that left any out.
+  const std::vector<Index>& enclosed_particles() const { return ppe_.enclosed(); }
+  long long steps_with_enclosed_regions() const { return enclosed_steps_; }
   const FluidStepTimings& last_timings() const { return timings_; }
   const parameters_type& parameters() const { return p_; }
   const MpsConstants<double>& density_constants() const { return c_n_; }
@@ -225,6 +243,11 @@ class FluidSolver {
     const double s = std::chrono::duration<double>(now - t).count();
     t = now;
     return s;
+  }
+  static std::string format_position(const vec_type& v) {
+    std::string s = "(";
+    for (int k = 0; k < Dim; ++k) s += (k ? ", " : "") + std::to_string(v[k]);
+    return s + ")";
   }
   static double radius_of(const parameters_type& p) {
     p.validate();
@@ -286,7 +309,7 @@ class FluidSolver {
   SolveReport report_;
   FluidStepTimings timings_;
   double time_ = 0, last_dt_ = 0, reference_speed_ = 0;
-  long long step_count_ = 0;
+  long long step_count_ = 0, enclosed_steps_ = 0;
   bool warned_dt_ = false;
 };
 

