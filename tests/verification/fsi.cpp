@@ -167,7 +167,7 @@ TEST_CASE("crack entry: a crack opened under water becomes surface and the water
   sp.youngs_modulus = 1e8;
   sp.poisson_ratio = 0.3;
   ElasticSolver<2> block(scenes::material_block<2>(Vec<2>(0.1, 0), Vec<2>(0.2, top), l0), sp);
-  const auto& x0 = block.particles().positions();
+  const VecArray<2> x0 = block.particles().positions();  // a copy: the block moves into the coupler
   std::size_t crack_cuts = 0;
   for (std::size_t i = 0; i < x0.size(); ++i)
     if (std::abs(x0[i][0] - (crack_x + l0 / 2)) < 1e-9) crack_cuts += block.impose_crack(i, Vec<2>(1, 0));

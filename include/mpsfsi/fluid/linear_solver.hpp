@@ -63,11 +63,11 @@ class JacobiCg {
     const std::size_t stride = (static_cast<std::size_t>(n) + 511) / 512 * 512 + 24;
     work_.resize(5 * stride + 8);
     double* base = work_.data();
-    double* r_ = base;
-    double* z_ = base + stride;
-    double* p_ = base + 2 * stride;
-    double* q_ = base + 3 * stride;
-    double* dinv_ = base + 4 * stride;
+    double* r = base;
+    double* z = base + stride;
+    double* p = base + 2 * stride;
+    double* q = base + 3 * stride;
+    double* dinv = base + 4 * stride;
     const int* outer = a.outerIndexPtr();
     const int* col = a.innerIndexPtr();
     const double* val = a.valuePtr();
@@ -81,13 +81,13 @@ class JacobiCg {
         if (col[k] == i) diag = val[k];
       }
       positive_diagonal = positive_diagonal && diag > 0;
-      dinv_[i] = diag > 0 ? 1.0 / diag : 1.0;
-      r_[i] = b[i] - ax;
-      z_[i] = dinv_[i] * r_[i];
-      p_[i] = z_[i];
+      dinv[i] = diag > 0 ? 1.0 / diag : 1.0;
+      r[i] = b[i] - ax;
+      z[i] = dinv[i] * r[i];
+      p[i] = z[i];
       bb += b[i] * b[i];
-      rz += r_[i] * z_[i];
-      rr += r_[i] * r_[i];
+      rz += r[i] * z[i];
+      rr += r[i] * r[i];
     }
     if (!positive_diagonal) return SolveReport{false, 0, 1.0};
     if (bb == 0) {
@@ -102,9 +102,9 @@ class JacobiCg {
       MPSFSI_OMP(parallel for schedule(static) reduction(+ : pq))
       for (std::int64_t i = 0; i < n; ++i) {
         double s = 0;
-        for (int k = outer[i]; k < outer[i + 1]; ++k) s += val[k] * p_[col[k]];
-        q_[i] = s;
-        pq += p_[i] * s;
+        for (int k = outer[i]; k < outer[i + 1]; ++k) s += val[k] * p[col[k]];
+        q[i] = s;
+        pq += p[i] * s;
       }
       if (!(pq > 0)) break;  // the matrix is not positive definite along p
       const double alpha = rz / pq;
@@ -112,16 +112,16 @@ class JacobiCg {
       rr = 0;
       MPSFSI_OMP(parallel for schedule(static) reduction(+ : rz_new, rr))
       for (std::int64_t i = 0; i < n; ++i) {
-        x[i] += alpha * p_[i];
-        r_[i] -= alpha * q_[i];
-        z_[i] = dinv_[i] * r_[i];
-        rz_new += r_[i] * z_[i];
-        rr += r_[i] * r_[i];
+        x[i] += alpha * p[i];
+        r[i] -= alpha * q[i];
+        z[i] = dinv[i] * r[i];
+        rz_new += r[i] * z[i];
+        rr += r[i] * r[i];
       }
       const double beta = rz_new / rz;
       rz = rz_new;
       MPSFSI_OMP(parallel for schedule(static))
-      for (std::int64_t i = 0; i < n; ++i) p_[i] = z_[i] + beta * p_[i];
+      for (std::int64_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
     }
     return SolveReport{rr <= threshold, it, std::sqrt(rr / bb)};
   }
