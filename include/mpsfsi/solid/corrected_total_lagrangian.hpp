@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
 #include "mpsfsi/solid/deformation.hpp"
+#include "mpsfsi/solid/detail/packed_bonds.hpp"
 
 namespace mpsfsi {
 
@@ -41,73 +44,126 @@ class CorrectedTotalLagrangian {
   using vec_type = Vec<Dim, Scalar>;
   using mat_type = Mat<Dim, Scalar>;
   using fit_type = DeformationFit<Dim, Scalar>;
+  static constexpr int width = fit_type::width;
+#if defined(__AVX__)
+  static constexpr int lanes = 4;  // bonds per SIMD step of the force loop: one AVX register
+#else
+  static constexpr int lanes = 2;  // one SSE2 register (4 lanes there measured 45 % slower)
+#endif
 
   Scalar stabilization = Scalar(0.1);  // alpha
 
   void initialize(const BondList<Dim, Scalar>& bonds, const SolidModelContext<Dim, Scalar>& context) {
     context_ = context;
     fit_.build(bonds, context.l0);
+    packed_.build(fit_, bonds);
   }
 
   // Refits the particles whose bonds were cut.
   void bonds_changed(const BondList<Dim, Scalar>& bonds, const std::vector<std::size_t>& particles) {
-    for (const std::size_t i : particles) fit_.rebuild(bonds, i);
+    for (const std::size_t i : particles) {
+      fit_.rebuild(bonds, i);
+      packed_.update(fit_, bonds, i);
+    }
   }
 
-  void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds,
-                       VecArray<Dim, Scalar>& force) {
+  // With t_ij = V P_i g_ij + 2c beta_ij delta_ij per directed bond, f_k = sum_j (t_kj - t_jk).
+  // Particle i fits A_i, adds its own t_ij and subtracts each from particle j's force: thread 0
+  // into `force`, the others into their own copies (partial_), which are added at the end, so no
+  // two threads write the same entry. The bond loops run over the padded rows of
+  // detail::PackedBonds `lanes` bonds at a time, as Eigen arrays of that length (Eigen maps them
+  // onto the SIMD registers the build enables); each thread keeps the particle's du_ij in its own
+  // rows of scratch_. Nothing is allocated after the first call.
+  void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>&, VecArray<Dim, Scalar>& force) {
+    using lane_type = Eigen::Array<Scalar, lanes, 1>;
+    using lane_map = Eigen::Map<const lane_type>;
     const auto n = static_cast<std::int64_t>(x.size());
     const Scalar v = context_.volume;
     const Scalar c2 = 2 * stabilization_constant();
+    const Scalar inv_l0 = 1 / context_.l0;
     force.resize(x.size());
-    const auto& nb = bonds.neighbors();
-    const auto& r0 = bonds.reference_vectors();
-    const auto& beta = bonds.betas();
-    const auto& offsets = bonds.offsets();
-    const auto& coeff = fit_.coefficients();
-    const auto& reverse = bonds.reverse_links();
-    // With t_ij = V P_i g_ij + 2c beta_ij delta_ij per directed bond, f_k = sum_j (t_kj - t_jk):
-    // the first pass fits A_i and writes t for i's own bonds, the second gathers the reverse ones.
-    bond_terms_.resize(bonds.num_bonds());
-    // Raw pointers and local bounds: stores through bond_terms_ and force would otherwise make
-    // the compiler reload every container's data pointer and bound in the inner loops.
-    vec_type* const terms = bond_terms_.data();
+    const std::size_t row = packed_.longest_row();
+    const int threads = parallel::max_threads();
+    scratch_.resize(static_cast<std::size_t>(threads) * Dim * row);
+    partial_.resize(static_cast<std::size_t>(threads - 1) * x.size());
+    // Raw pointers: stores through force would otherwise make the compiler reload every
+    // container's data pointer in the inner loops.
+    Scalar* const scratch = scratch_.data();
+    vec_type* const partial = partial_.data();
     vec_type* const out = force.data();
     const vec_type* const pos = x.data();
-    const Index* const nbp = nb.data();
-    const vec_type* const r0p = r0.data();
-    const Scalar* const betap = beta.data();
-    const Offset* const offp = offsets.data();
-    const Offset* const revp = reverse.data();
-    const auto* const coeffp = coeff.data();
+    const Index* const nbp = packed_.neighbors();
+    const Scalar* const betap = packed_.beta();
     MPSFSI_OMP(parallel)
     {
+      const int thread = parallel::thread_id();
+      const int team = parallel::team_size();
+      vec_type* const mine = thread == 0 ? out : partial + static_cast<std::size_t>(thread - 1) * x.size();
+      // Per-thread copies of the row pointers: shared ones would be reloaded after every store.
+      const Scalar* r0[Dim];
+      for (int a = 0; a < Dim; ++a) r0[a] = packed_.reference_vector(a);
+      const Scalar* g[width];
+      for (int c = 0; c < width; ++c) g[c] = packed_.coefficient(c);
+      Scalar* const du = scratch + static_cast<std::size_t>(thread) * Dim * row;
+      std::fill(mine, mine + n, vec_type::Zero());
+      MPSFSI_OMP(barrier)
       MPSFSI_OMP(for schedule(static))
       for (std::int64_t i = 0; i < n; ++i) {
-        const Offset first = offp[i], last = offp[i + 1];
+        const Offset first = packed_.begin(static_cast<std::size_t>(i));
+        const auto m = static_cast<std::size_t>(packed_.end(static_cast<std::size_t>(i)) - first);
         const vec_type xi = pos[i];
-        // U = A - [I 0] = sum_j du_j g_j^T, du_j = r_ij - r0_ij; delta_ij = du_j - U phi(r0_ij).
-        typename fit_type::affine_type u = fit_type::affine_type::Zero();
-        for (Offset b = first; b < last; ++b) u.noalias() += (pos[nbp[b]] - xi - r0p[b]) * coeffp[b].transpose();
+        // du_ij = r_ij - r0_ij and U = A_i - [I 0] = sum_j du_ij g_ij^T.
+        lane_type acc[Dim][width];
+        for (int a = 0; a < Dim; ++a)
+          for (int c = 0; c < width; ++c) acc[a][c].setZero();
+        for (std::size_t k = 0; k < m; k += lanes) {
+          const Offset s = first + static_cast<Offset>(k);
+          lane_type d[Dim];
+          for (int l = 0; l < lanes; ++l) {
+            const vec_type& xj = pos[nbp[s + l]];
+            for (int a = 0; a < Dim; ++a) d[a][l] = xj[a] - xi[a];
+          }
+          for (int a = 0; a < Dim; ++a) {
+            d[a] -= lane_map(r0[a] + s);
+            Eigen::Map<lane_type>(du + a * row + k) = d[a];
+            for (int c = 0; c < width; ++c) acc[a][c] += d[a] * lane_map(g[c] + s);
+          }
+        }
+        typename fit_type::affine_type u;
+        for (int a = 0; a < Dim; ++a)
+          for (int c = 0; c < width; ++c) u(a, c) = acc[a][c].sum();
         const mat_type f = mat_type::Identity() + u.template leftCols<Dim>();
         const mat_type vp = v * f * detail::svk_stress(detail::green_strain(f), context_.lame);
-        vec_type own = vec_type::Zero();
-        for (Offset b = first; b < last; ++b) {
-          const vec_type r0b = r0p[b];
-          const vec_type delta = pos[nbp[b]] - xi - r0b - u.template leftCols<Dim>() * r0b -
-                                 u.template rightCols<fit_type::quad>() * fit_.quadratic(r0b);
-          const vec_type t = vp * coeffp[b].template head<Dim>() + (c2 * betap[b]) * delta;
-          terms[b] = t;
-          own += t;
+        // t_ij = V P_i g_ij + 2c beta_ij (du_ij - U phi(r0_ij)): + to i, - to j.
+        lane_type own[Dim];
+        for (int a = 0; a < Dim; ++a) own[a].setZero();
+        for (std::size_t k = 0; k < m; k += lanes) {
+          const Offset s = first + static_cast<Offset>(k);
+          // phi(r0) = [r0, q(r0)/l0] as DeformationFit::basis, the quadratic part rebuilt here.
+          lane_type phi[width];
+          for (int a = 0; a < Dim; ++a) phi[a] = lane_map(r0[a] + s);
+          for (int a = 0, c = Dim; a < Dim; ++a)
+            for (int b = a; b < Dim; ++b, ++c) phi[c] = (a == b ? Scalar(0.5) * inv_l0 : inv_l0) * phi[a] * phi[b];
+          const lane_type cb = c2 * lane_map(betap + s);
+          lane_type t[Dim];
+          for (int a = 0; a < Dim; ++a) {
+            lane_type delta = lane_map(du + a * row + k);
+            for (int c = 0; c < width; ++c) delta -= u(a, c) * phi[c];
+            t[a] = cb * delta;
+            for (int c = 0; c < Dim; ++c) t[a] += vp(a, c) * lane_map(g[c] + s);
+            own[a] += t[a];
+          }
+          for (int l = 0; l < lanes; ++l) {
+            vec_type& fj = mine[nbp[s + l]];
+            for (int a = 0; a < Dim; ++a) fj[a] -= t[a][l];
+          }
         }
-        out[i] = own;
+        for (int a = 0; a < Dim; ++a) mine[i][a] += own[a].sum();
       }
-      MPSFSI_OMP(for schedule(static))
-      for (std::int64_t i = 0; i < n; ++i) {
-        const Offset first = offp[i], last = offp[i + 1];
-        vec_type sum = out[i];
-        for (Offset b = first; b < last; ++b) sum -= terms[revp[b]];
-        out[i] = sum;
+      if (team > 1) {
+        MPSFSI_OMP(for schedule(static))
+        for (std::int64_t i = 0; i < n; ++i)
+          for (int t = 1; t < team; ++t) out[i] += partial[static_cast<std::size_t>(t - 1) * x.size() + static_cast<std::size_t>(i)];
       }
     }
   }
@@ -145,7 +201,9 @@ class CorrectedTotalLagrangian {
 
   SolidModelContext<Dim, Scalar> context_;
   fit_type fit_;
-  VecArray<Dim, Scalar> bond_terms_;  // t_ij
+  detail::PackedBonds<Dim, Scalar, lanes> packed_;
+  VecArray<Dim, Scalar> partial_;  // the forces threads 1.. add up, one copy per thread
+  std::vector<Scalar> scratch_;  // du_ij of the particle in hand, Dim rows per thread
 };
 
 }  // namespace mpsfsi
