@@ -135,6 +135,28 @@ TEST_CASE("fluid.fluid_solver: fluid that touches no free surface is an error, o
     CHECK(scale > 0);
     CHECK(worst <= 1e-12 * scale);  // round-off only: the same system
   }
+  SUBCASE("walls only: left out under the default policy, not an error, not counted") {
+    // As the closed faces of a crack: wall particles inside dummies, no fluid among them.
+    ParticleSet<2> with_walls = small_tank();
+    const std::size_t tank_size = with_walls.size();
+    add_enclosed_fluid(with_walls, Vec<2>(0.3, 0.3), 0.01, p.l0);
+    for (std::size_t i = tank_size; i < with_walls.size(); ++i)
+      if (with_walls.kinds()[i] == ParticleKind::fluid) with_walls.kinds()[i] = ParticleKind::wall;
+    FluidSolver<2> alone(small_tank(), p), both(std::move(with_walls), p);
+    REQUIRE(p.enclosed_region == EnclosedRegion::error);
+    alone.step();
+    both.step();  // no SimulationError
+    REQUIRE(both.enclosed_particles().size() == 4);
+    CHECK(both.steps_with_enclosed_regions() == 0);
+    for (const auto i : both.enclosed_particles()) CHECK(both.pressure()[static_cast<std::size_t>(i)] == 0);
+    CHECK(both.last_solve().iterations == alone.last_solve().iterations);
+    double worst = 0, scale = 0;
+    for (std::size_t i = 0; i < tank_size; ++i) {
+      worst = std::max(worst, std::abs(both.pressure()[i] - alone.pressure()[i]));
+      scale = std::max(scale, std::abs(alone.pressure()[i]));
+    }
+    CHECK(worst <= 1e-12 * scale);  // round-off only: the same system
+  }
 }
 
 TEST_CASE("fluid.fluid_solver: a fluid at rest in free fall without walls falls at g") {

@@ -12,11 +12,13 @@ namespace mpsfsi {
 // What to do with negative pressures after the PPE solve.
 enum class NegativePressure { clamp_to_zero, keep };
 
-// What to do with an enclosed region: fluid or wall particles in the PPE, connected, none of
-// which touches the free surface, so their pressure level is undetermined (a singular PPE).
-// A closed container filled to the top is one (an error: the model needs a free surface); fluid
-// trapped between the fragments of a breaking structure, or the closed faces of a crack seen as
-// wall particles, are others (zero_pressure: left out of the PPE with P = 0, and counted).
+// What to do with an enclosed region with fluid in it: fluid or wall particles in the PPE,
+// connected, none of which touches the free surface, so their pressure level is undetermined (a
+// singular PPE). A closed container filled to the top is one (an error: the model needs a free
+// surface); fluid trapped between the fragments of a breaking structure is another
+// (zero_pressure: left out of the PPE with P = 0, and counted). A region of wall particles only
+// (the closed faces of a crack, a wall inside dummies) holds no fluid to get wrong: it is always
+// left out with P = 0, under either setting, and not counted.
 enum class EnclosedRegion { error, zero_pressure };
 
 // Physical and numerical parameters of FluidSolver. Lengths in m, times in s, SI throughout.

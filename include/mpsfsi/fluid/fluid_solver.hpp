@@ -138,8 +138,10 @@ class FluidSolver {
     }
     const bool leave_out = p_.enclosed_region == EnclosedRegion::zero_pressure;
     ppe_.assemble(x, kind, surface_, list_pw_, c_lap_, source_, a_, b_, leave_out);
-    if (!ppe_.enclosed().empty()) {
-      const auto i = static_cast<std::size_t>(ppe_.enclosed().front());
+    if (ppe_.enclosed_fluid() > 0) {  // wall-only enclosed regions are left out silently
+      const auto i = static_cast<std::size_t>(*std::find_if(
+          ppe_.enclosed().begin(), ppe_.enclosed().end(),
+          [&](Index k) { return kind[static_cast<std::size_t>(k)] == ParticleKind::fluid; }));
       if (!leave_out)
         throw SimulationError("FluidSolver: at step " + std::to_string(step_count_ + 1) + " (t = " +
                                   std::to_string(time_ + dt) + ") " + std::to_string(ppe_.enclosed().size()) +
@@ -226,8 +228,9 @@ class FluidSolver {
   // Acceleration added to fluid particles in the predictor (eq 9's coupling term f_S->F).
   VecArray<Dim>& external_acceleration() { return external_; }
   const SolveReport& last_solve() const { return report_; }
-  // Particles left out of the last step's PPE as an enclosed region (EnclosedRegion), and the
-  // number of steps so far that left any out.
+  // Particles of the last step's enclosed regions (EnclosedRegion; after a successful step they
+  // were left out of the PPE with P = 0), and the number of steps so far that left out a region
+  // with fluid in it.
   const std::vector<Index>& enclosed_particles() const { return ppe_.enclosed(); }
   long long steps_with_enclosed_regions() const { return enclosed_steps_; }
   const FluidStepTimings& last_timings() const { return timings_; }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -25,8 +26,11 @@ namespace mpsfsi {
 // Enclosed regions: a connected set of unknowns none of which has a Dirichlet neighbour (free
 // surface, or a solid-kind particle) makes a pure Neumann block: singular, its pressure level
 // undetermined, and CG diverges on it. assemble() finds them (a flood fill over the matrix from
-// the rows that have a Dirichlet neighbour) and reports them in enclosed(); called with
-// leave_out_enclosed it takes them out of the system (P = 0 there) and assembles again.
+// the rows that have a Dirichlet neighbour) and reports them in enclosed(). If they hold wall
+// particles only (the closed faces of a crack, a wall block inside dummies) or if called with
+// leave_out_enclosed, it takes them out of the system (P = 0 there) and assembles again; an
+// enclosed region with fluid in it is otherwise left for the caller to report
+// (enclosed_fluid()).
 // Assembled straight into CSR: one counting pass, a prefix sum, one filling pass, OpenMP over
 // rows, each row sorted by column. The arrays keep their capacity from one step to the next.
 template <class Weight, int Dim, class Scalar>
@@ -44,7 +48,10 @@ class PpeAssembler {
     left_out_.clear();
     assemble_once(x, kinds, surface, list, lap, source, a, b);
     find_enclosed(a);
-    if (enclosed_.empty() || !leave_out_enclosed) return;
+    enclosed_fluid_ = static_cast<std::size_t>(std::count_if(enclosed_.begin(), enclosed_.end(), [&](Index i) {
+      return kinds[static_cast<std::size_t>(i)] == ParticleKind::fluid;
+    }));
+    if (enclosed_.empty() || (enclosed_fluid_ > 0 && !leave_out_enclosed)) return;
     left_out_.assign(x.size(), 0);
     for (const Index i : enclosed_) left_out_[static_cast<std::size_t>(i)] = 1;
     assemble_once(x, kinds, surface, list, lap, source, a, b);
@@ -52,6 +59,8 @@ class PpeAssembler {
 
   // Particles of the last assemble() that lie in enclosed regions (see above), in row order.
   const std::vector<Index>& enclosed() const { return enclosed_; }
+  // How many of them are fluid particles. If none, the region was left out in any case.
+  std::size_t enclosed_fluid() const { return enclosed_fluid_; }
 
  private:
   void assemble_once(const VecArray<Dim, Scalar>& x, const std::vector<ParticleKind>& kinds,
@@ -159,6 +168,7 @@ class PpeAssembler {
   std::vector<std::uint8_t> anchored_, left_out_;
   std::vector<int> front_;
   std::vector<Index> enclosed_;
+  std::size_t enclosed_fluid_ = 0;
 };
 
 }  // namespace mpsfsi
