@@ -139,10 +139,10 @@ class FluidSolver {
     const bool leave_out = p_.enclosed_region == EnclosedRegion::zero_pressure;
     ppe_.assemble(x, kind, surface_, list_pw_, c_lap_, source_, a_, b_, leave_out);
     if (ppe_.enclosed_fluid() > 0) {  // wall-only enclosed regions are left out silently
-      const auto i = static_cast<std::size_t>(*std::find_if(
-          ppe_.enclosed().begin(), ppe_.enclosed().end(),
-          [&](Index k) { return kind[static_cast<std::size_t>(k)] == ParticleKind::fluid; }));
-      if (!leave_out)
+      if (!leave_out) {
+        const auto i = static_cast<std::size_t>(*std::find_if(
+            ppe_.enclosed().begin(), ppe_.enclosed().end(),
+            [&](Index k) { return kind[static_cast<std::size_t>(k)] == ParticleKind::fluid; }));
         throw SimulationError("FluidSolver: at step " + std::to_string(step_count_ + 1) + " (t = " +
                                   std::to_string(time_ + dt) + ") " + std::to_string(ppe_.enclosed().size()) +
                                   " particles, among them particle " + std::to_string(i) + " (id " +
@@ -151,6 +151,7 @@ class FluidSolver {
                                   "(a closed container filled to the top?). Set FluidParameters::enclosed_region "
                                   "= EnclosedRegion::zero_pressure to leave such regions out with P = 0.",
                               step_count_ + 1, time_ + dt, static_cast<long long>(i));
+      }
       enclosed_steps_ += 1;
     }
     timings_.ppe_assembly = lap_time(tick);

@@ -25,7 +25,6 @@ class PackedBonds {
  public:
   using fit_type = DeformationFit<Dim, Scalar>;
   static constexpr int width = fit_type::width;
-  static constexpr int lanes = Lanes;
 
   void build(const fit_type& fit, const BondList<Dim, Scalar>& bonds) {
     const std::size_t n = bonds.num_particles();
@@ -66,7 +65,6 @@ class PackedBonds {
 
   Offset begin(std::size_t i) const { return first_[i]; }
   Offset end(std::size_t i) const { return first_[i + 1]; }
-  std::size_t num_slots() const { return slots_; }
   std::size_t longest_row() const { return longest_; }
   const Index* neighbors() const { return neighbor_.data(); }
   const Scalar* reference_vector(int a) const { return row(a); }
