@@ -11,6 +11,7 @@
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/fluid/free_surface.hpp"
 #include "mpsfsi/fluid/linear_solver.hpp"
+#include "mpsfsi/fluid/ssor_cg.hpp"
 #include "mpsfsi/fluid/ppe.hpp"
 #include "mpsfsi/kernels/number_density.hpp"
 #include "mpsfsi/scenes/lattice.hpp"
@@ -120,9 +121,11 @@ void solve_sizes(benchmark::internal::Benchmark* b) {
 BENCHMARK_TEMPLATE(assemble, 2)->Apply(assembly_sizes);
 BENCHMARK_TEMPLATE(assemble, 3)->Apply(assembly_sizes);
 BENCHMARK_TEMPLATE(solve, 2, JacobiCg)->Apply(solve_sizes);
+BENCHMARK_TEMPLATE(solve, 2, SsorCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 2, EigenJacobiCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 2, IncompleteCholeskyCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 3, JacobiCg)->Apply(solve_sizes);
+BENCHMARK_TEMPLATE(solve, 3, SsorCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 3, IncompleteCholeskyCg)->Apply(solve_sizes);
 
 #if defined(MPSFSI_BENCH_HYPRE)

@@ -26,6 +26,7 @@
 #include "mpsfsi/fluid/fluid_solver.hpp"
 #include "mpsfsi/fluid/free_surface.hpp"
 #include "mpsfsi/fluid/linear_solver.hpp"
+#include "mpsfsi/fluid/ssor_cg.hpp"
 #include "mpsfsi/fluid/ppe.hpp"
 // mpsfsi/fluid/hypre_amg.hpp is left out: it needs hypre and MPI (target mpsfsi::hypre).
 

@@ -19,6 +19,7 @@
 #include "mpsfsi/fluid/fluid_parameters.hpp"
 #include "mpsfsi/fluid/free_surface.hpp"
 #include "mpsfsi/fluid/linear_solver.hpp"
+#include "mpsfsi/fluid/ssor_cg.hpp"
 #include "mpsfsi/fluid/ppe.hpp"
 #include "mpsfsi/kernels/divergence.hpp"
 #include "mpsfsi/kernels/gradient.hpp"
@@ -31,12 +32,13 @@
 namespace mpsfsi {
 
 // The policy bundle of FluidSolver. Override one entry by deriving:
-//   struct MyPolicies : FluidDefaults<2> { using linear_solver = IncompleteCholeskyCg; };
+//   struct MyPolicies : FluidDefaults<2> { using linear_solver = JacobiCg; };
 template <int Dim>
 struct FluidDefaults {
   using weight = KoshizukaWeight;
   using gradient_correction = KhayyerGotohCorrection<Dim, double>;
-  using linear_solver = JacobiCg;
+  // SSOR-CG: 2-4x faster than Jacobi-CG on the PPE from 5e3 to 1e5 unknowns, 2D and 3D (README).
+  using linear_solver = SsorCg;
   using free_surface = NumberDensitySurface;
   using collision = KoshizukaCollision;
   using neighbor_search = CellListSearch<Dim, double>;
