@@ -13,15 +13,17 @@ namespace mpsfsi {
 namespace detail {
 
 template <class Keep>
-bool keep_pair(Keep& keep, std::size_t i, Index j) {
-  if constexpr (std::is_invocable_v<Keep&, std::size_t, Index>) return keep(i, j);
+bool keep_pair(Keep& keep, std::size_t i, Index j, Offset k) {
+  if constexpr (std::is_invocable_v<Keep&, std::size_t, Index, Offset>) return keep(i, j, k);
+  else if constexpr (std::is_invocable_v<Keep&, std::size_t, Index>) return keep(i, j);
   else return keep(j);
 }
 
 }  // namespace detail
 
 // Copies the entries (j, distance) of `in` for which keep(j) (or keep(i, j), if keep takes the
-// row too) holds into `out`, row by row, so operators that must not see some particles (e.g.
+// row too, or keep(i, j, k), k the entry's position in `in`, e.g. to read in.distances[k]) holds
+// into `out`, row by row, in their order, so operators that must not see some particles (e.g.
 // the pressure gradient and the dummy wall particles) reuse the step's one search. Allocates
 // only while `out` grows.
 template <class Scalar, class Keep>
@@ -33,7 +35,7 @@ void filter_neighbors(const BasicNeighborList<Scalar>& in, Keep&& keep, BasicNei
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     Offset c = 0;
-    for (Offset k = in.begin(i); k < in.end(i); ++k) c += detail::keep_pair(keep, i, in.indices[k]) ? 1 : 0;
+    for (Offset k = in.begin(i); k < in.end(i); ++k) c += detail::keep_pair(keep, i, in.indices[k], k) ? 1 : 0;
     out.offsets[i + 1] = c;
   }
   for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
@@ -45,7 +47,7 @@ void filter_neighbors(const BasicNeighborList<Scalar>& in, Keep&& keep, BasicNei
     const auto i = static_cast<std::size_t>(ii);
     Offset p = out.offsets[i];
     for (Offset k = in.begin(i); k < in.end(i); ++k) {
-      if (!detail::keep_pair(keep, i, in.indices[k])) continue;
+      if (!detail::keep_pair(keep, i, in.indices[k], k)) continue;
       out.indices[p] = in.indices[k];
       if (dist) out.distances[p] = in.distances[k];
       ++p;

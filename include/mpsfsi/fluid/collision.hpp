@@ -14,6 +14,8 @@ namespace mpsfsi {
 
 // Collision policies act on the predicted velocity u* of fluid particles:
 //   template <int Dim> void apply(x, kinds, list, l0, u_star, scratch)
+// FluidSolver passes the pairs within max(re_density, re_gradient) (2.1 l0 by default; always
+// more than l0), every particle kind included.
 
 // No collision model (a null object).
 struct NoCollision {
@@ -33,7 +35,7 @@ struct NoCollision {
 // Applied Jacobi-style (all pairs see the velocities before the collision), so the result does
 // not depend on the thread count.
 struct KoshizukaCollision {
-  double distance_ratio = 0.5;
+  double distance_ratio = 0.5;  // at most FluidSolver's re_density_ratio (the pairs it passes)
   double restitution = 0.2;
 
   template <int Dim, class Scalar>

@@ -221,7 +221,8 @@ class SsorCg {
     const int* const outer = a.outerIndexPtr();
     const int* const col = a.innerIndexPtr();
     const double* const val = a.valuePtr();
-    // Pass 1: per row, the diagonal's position (kept in upper_first_ for now) and the counts.
+    // Pass 1: per row (its columns increasing), the sizes of its parts in C, L and L^T, and
+    // D/omega. The row is [C before the block | L | diagonal | L^T | C after the block].
     bool ok = true, sorted = true;
     MPSFSI_OMP(parallel for schedule(static, 1) reduction(&& : ok, sorted))
     for (int blk = 0; blk < blocks; ++blk) {
@@ -229,24 +230,22 @@ class SsorCg {
       const std::int64_t end = first_row_[static_cast<std::size_t>(blk) + 1];
       for (std::int64_t i = begin; i < end; ++i) {
         const auto row = static_cast<std::size_t>(i);
-        std::int64_t cross = 0, lower = 0, upper = 0, diag = -1;
-        for (int k = outer[i]; k < outer[i + 1]; ++k) {
-          const std::int64_t j = col[k];
-          if (k > outer[i]) sorted = sorted && col[k - 1] < j;
-          if (j < begin || j >= end)
-            ++cross;
-          else if (j < i)
-            ++lower;
-          else if (j > i)
-            ++upper;
-          else
-            diag = k;
-        }
-        ok = ok && diag >= 0 && val[diag] > 0;
-        dw_[row] = diag >= 0 ? val[diag] / omega : 1.0;
-        lower_first_[row + 1] = cross + lower;
-        lower_inside_[row] = cross;
-        upper_first_[row + 1] = upper;
+        const int stop = outer[i + 1];
+        for (int k = outer[i] + 1; k < stop; ++k) sorted = sorted && col[k - 1] < col[k];
+        int k = outer[i];
+        while (k < stop && col[k] < begin) ++k;
+        const int inside = k;
+        while (k < stop && col[k] < i) ++k;
+        const int diag = k;
+        const bool has_diag = k < stop && col[k] == i && val[k] > 0;
+        ok = ok && has_diag;
+        while (k < stop && col[k] < end) ++k;
+        const int beyond = k;
+        // counts: C = (inside - outer) + (stop - beyond), L = diag - inside, L^T = beyond - diag - 1
+        lower_first_[row + 1] = (inside - outer[i]) + (stop - beyond) + (diag - inside);
+        lower_inside_[row] = (inside - outer[i]) + (stop - beyond);
+        upper_first_[row + 1] = has_diag ? beyond - diag - 1 : 0;
+        dw_[row] = has_diag ? val[diag] / omega : 1.0;
       }
     }
     if (!sorted) detail::throw_invalid("SsorCg", "each matrix row must list its columns in increasing order");
@@ -261,26 +260,29 @@ class SsorCg {
     lower_val_.resize(lower_col_.size());
     upper_col_.resize(static_cast<std::size_t>(upper_first_[rows]));
     upper_val_.resize(upper_col_.size());
-    // Pass 2: copy (each block writes its own rows, so each thread first touches its own part).
+    // Pass 2: copy the four stretches of each row (each block writes its own rows, so each
+    // thread first touches its own part).
     MPSFSI_OMP(parallel for schedule(static, 1))
     for (int blk = 0; blk < blocks; ++blk) {
       const std::int64_t begin = first_row_[static_cast<std::size_t>(blk)];
       const std::int64_t end = first_row_[static_cast<std::size_t>(blk) + 1];
       for (std::int64_t i = begin; i < end; ++i) {
         const auto row = static_cast<std::size_t>(i);
-        auto c = static_cast<std::size_t>(lower_first_[row]);
-        auto l = static_cast<std::size_t>(lower_inside_[row]);
-        auto u = static_cast<std::size_t>(upper_first_[row]);
-        for (int k = outer[i]; k < outer[i + 1]; ++k) {
-          const std::int64_t j = col[k];
-          if (j < begin || j >= end) {
-            lower_col_[c] = col[k], lower_val_[c++] = val[k];
-          } else if (j < i) {
-            lower_col_[l] = col[k], lower_val_[l++] = val[k];
-          } else if (j > i) {
-            upper_col_[u] = col[k], upper_val_[u++] = val[k];
-          }
-        }
+        const int* const c0 = col + outer[i];
+        const int* const c1 = col + outer[i + 1];
+        const int* const inside = std::lower_bound(c0, c1, static_cast<int>(begin));
+        const int* const diag = std::lower_bound(inside, c1, static_cast<int>(i));
+        const int* const beyond = std::lower_bound(diag, c1, static_cast<int>(end));
+        const double* const v0 = val + outer[i];
+        auto copy = [&](const int* from, const int* to, std::vector<int>& cols, std::vector<double>& vals, std::int64_t at) {
+          std::copy(from, to, cols.data() + at);
+          std::copy(v0 + (from - c0), v0 + (to - c0), vals.data() + at);
+          return at + (to - from);
+        };
+        std::int64_t at = copy(c0, inside, lower_col_, lower_val_, lower_first_[row]);  // C, before the block
+        at = copy(beyond, c1, lower_col_, lower_val_, at);                              // C, after it
+        copy(inside, diag, lower_col_, lower_val_, at);                                 // L
+        copy(diag + 1, beyond, upper_col_, upper_val_, upper_first_[row]);              // L^T
       }
     }
     return true;
