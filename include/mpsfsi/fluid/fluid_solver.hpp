@@ -266,9 +266,9 @@ class FluidSolver {
     search_.build(set_.positions());
     search_.self_query(set_.positions(), list_all_, opt);
     const auto& kind = set_.kinds();
-    // The number density, divergence, gradient correction and pressure gradient run over lists
-    // cut to their radius (2.1 l0 by default, against the Laplacian's 3.1 l0 that the search
-    // uses): less than half the pairs. The pairs dropped have zero weight and the rest keep their
+    // The number density, collision, divergence, gradient correction and pressure gradient run
+    // over lists cut to their radius (2.1 l0 by default, against the Laplacian's 3.1 l0 that the
+    // search uses): less than half the pairs. The pairs dropped have zero weight and the rest keep their
     // order, so the sums are the same to the bit. (Cut a little beyond the radius so that a pair
     // at the radius within round-off is kept; its weight is zero anyway.) The last three see no
     // dummy particles (list_pw_); the PPE assembly takes the whole list and skips them itself.

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "mpsfsi/core/error.hpp"
@@ -16,32 +16,34 @@ namespace mpsfsi {
 
 namespace detail {
 
-// sum of val[k] v[col[k]] over k in [begin, end), in four independent partial sums. In the SSOR
-// sweeps each row waits for the rows before it; with one running sum the row's whole chain of
-// dependent additions would sit on that path (measured 5x slower per iteration than Jacobi-CG in
+// sum of val[k] v[col[k]] over k in [begin, end) (one row: counted from begin in int), in four
+// independent partial sums. In the SSOR sweeps each row waits for the rows before it; with one
+// running sum the row's whole chain of dependent additions would sit on that path (measured 5x slower per iteration than Jacobi-CG in
 // 3D, 58 terms a row). Forward (`Reversed` false) the terms are taken in increasing k, reversed
 // in decreasing k, so the term of the nearest row, which is ready last, is added last.
 template <bool Reversed>
-inline double sparse_row_dot(const double* val, const int* col, const double* v, int begin, int end) {
+inline double sparse_row_dot(const double* val, const int* col, const double* v, std::int64_t begin, std::int64_t end) {
+  val += begin, col += begin;
+  const int m = static_cast<int>(end - begin);
   double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
   if constexpr (!Reversed) {
-    int k = begin;
-    for (; k + 4 <= end; k += 4) {
+    int k = 0;
+    for (; k + 4 <= m; k += 4) {
       s0 += val[k] * v[col[k]];
       s1 += val[k + 1] * v[col[k + 1]];
       s2 += val[k + 2] * v[col[k + 2]];
       s3 += val[k + 3] * v[col[k + 3]];
     }
-    for (; k < end; ++k) s0 += val[k] * v[col[k]];
+    for (; k < m; ++k) s0 += val[k] * v[col[k]];
   } else {
-    int k = end;
-    for (; k - 4 >= begin; k -= 4) {
+    int k = m;
+    for (; k - 4 >= 0; k -= 4) {
       s0 += val[k - 1] * v[col[k - 1]];
       s1 += val[k - 2] * v[col[k - 2]];
       s2 += val[k - 3] * v[col[k - 3]];
       s3 += val[k - 4] * v[col[k - 4]];
     }
-    for (; k > begin; --k) s0 += val[k - 1] * v[col[k - 1]];
+    for (; k > 0; --k) s0 += val[k - 1] * v[col[k - 1]];
   }
   return (s1 + s2 + s3) + s0;
 }
@@ -112,12 +114,6 @@ class SsorCg {
     const double* const uval = upper_val_.data();
     const std::int64_t* const first = first_row_.data();
     const double k_factor = omega - 2;  // K = (1 - 2/omega) D = (omega - 2) D/omega
-    // sum over a stretch of the copies (int offsets into them stay below 2^31 per row)
-    auto dot = [](const double* v_, const int* c_, const double* x_, std::int64_t b_, std::int64_t e_, auto reversed) {
-      return detail::sparse_row_dot<decltype(reversed)::value>(v_ + b_, c_ + b_, x_, 0, static_cast<int>(e_ - b_));
-    };
-    using forward = std::false_type;
-    using backward = std::true_type;
 
     // r0 = b - A x0 (into y) and x^ = L~^T x0.
     double rr = 0;
@@ -126,7 +122,7 @@ class SsorCg {
       inv_dw[i] = 1 / dw[i];
       y[i] = b[i] - detail::sparse_row_dot<false>(val, col, x.data(), outer[i], outer[i + 1]);
       rr += y[i] * y[i];
-      xh[i] = dw[i] * x[i] + dot(uval, ucol, x.data(), up[i], up[i + 1], forward{});
+      xh[i] = dw[i] * x[i] + detail::sparse_row_dot<false>(uval, ucol, x.data(), up[i], up[i + 1]);
       p[i] = 0;
     }
     const double threshold = tolerance * tolerance * bb;
@@ -136,7 +132,7 @@ class SsorCg {
     MPSFSI_OMP(parallel for schedule(static, 1) reduction(+ : rz, rrh))
     for (int blk = 0; blk < blocks; ++blk)
       for (std::int64_t i = first[blk]; i < first[blk + 1]; ++i) {
-        r[i] = (y[i] - dot(lval, lcol, r, in[i], lo[i + 1], forward{})) * inv_dw[i];
+        r[i] = (y[i] - detail::sparse_row_dot<false>(lval, lcol, r, in[i], lo[i + 1])) * inv_dw[i];
         rz += r[i] * dw[i] * r[i];
         rrh += r[i] * r[i];
       }
@@ -146,7 +142,7 @@ class SsorCg {
       double sum = 0;
       MPSFSI_OMP(parallel for schedule(static) reduction(+ : sum))
       for (std::int64_t i = 0; i < n; ++i) {
-        const double s = dw[i] * r[i] + dot(lval, lcol, r, in[i], lo[i + 1], forward{});
+        const double s = dw[i] * r[i] + detail::sparse_row_dot<false>(lval, lcol, r, in[i], lo[i + 1]);
         sum += s * s;
       }
       return sum;
@@ -162,7 +158,7 @@ class SsorCg {
         for (std::int64_t i = first[blk + 1] - 1; i >= first[blk]; --i) {
           const double pi = dw[i] * r[i] + beta * p[i];
           p[i] = pi;
-          t[i] = (pi - dot(uval, ucol, t, up[i], up[i + 1], backward{})) * inv_dw[i];
+          t[i] = (pi - detail::sparse_row_dot<true>(uval, ucol, t, up[i], up[i + 1])) * inv_dw[i];
         }
       // y = L~^-1 (p + K t + C t), forward through each block; q = A^ p = t + y.
       double pq = 0;
@@ -171,7 +167,7 @@ class SsorCg {
         for (std::int64_t i = first[blk]; i < first[blk + 1]; ++i) {
           double s = p[i] + k_factor * dw[i] * t[i];
           for (std::int64_t k = lo[i]; k < in[i]; ++k) s += lval[k] * t[lcol[k]];  // C t
-          y[i] = (s - dot(lval, lcol, y, in[i], lo[i + 1], forward{})) * inv_dw[i];
+          y[i] = (s - detail::sparse_row_dot<false>(lval, lcol, y, in[i], lo[i + 1])) * inv_dw[i];
           pq += p[i] * (t[i] + y[i]);
         }
       if (!(pq > 0)) break;  // the matrix is not positive definite along p
@@ -200,12 +196,24 @@ class SsorCg {
     MPSFSI_OMP(parallel for schedule(static, 1))
     for (int blk = 0; blk < blocks; ++blk)
       for (std::int64_t i = first[blk + 1] - 1; i >= first[blk]; --i)
-        x[i] = (xh[i] - dot(uval, ucol, x.data(), up[i], up[i + 1], backward{})) * inv_dw[i];
+        x[i] = (xh[i] - detail::sparse_row_dot<true>(uval, ucol, x.data(), up[i], up[i + 1])) * inv_dw[i];
     if (!converged) rr = residual_norm2();  // where the iteration stopped
     return SolveReport{converged, it, std::sqrt(rr / bb)};
   }
 
  private:
+  // Row i of block [begin, end), its columns increasing: [c0, inside) and [beyond, c1) couple it
+  // to other blocks (C), [inside, diag) is L, diag the diagonal (if present), (diag, beyond) L^T.
+  struct RowParts {
+    const int* inside;
+    const int* diag;
+    const int* beyond;
+    RowParts(const int* c0, const int* c1, std::int64_t begin, std::int64_t i, std::int64_t end)
+        : inside(std::lower_bound(c0, c1, static_cast<int>(begin))),
+          diag(std::lower_bound(inside, c1, static_cast<int>(i))),
+          beyond(std::lower_bound(diag, c1, static_cast<int>(end))) {}
+  };
+
   // Cuts the rows into `blocks` contiguous blocks and copies, per row, the couplings to other
   // blocks and the in-block lower part into lower_*, the in-block upper part into upper_*, and
   // D/omega into dw_. False if a diagonal entry is missing or not positive.
@@ -230,22 +238,19 @@ class SsorCg {
       const std::int64_t end = first_row_[static_cast<std::size_t>(blk) + 1];
       for (std::int64_t i = begin; i < end; ++i) {
         const auto row = static_cast<std::size_t>(i);
-        const int stop = outer[i + 1];
-        for (int k = outer[i] + 1; k < stop; ++k) sorted = sorted && col[k - 1] < col[k];
-        int k = outer[i];
-        while (k < stop && col[k] < begin) ++k;
-        const int inside = k;
-        while (k < stop && col[k] < i) ++k;
-        const int diag = k;
-        const bool has_diag = k < stop && col[k] == i && val[k] > 0;
+        const int* const c0 = col + outer[i];
+        const int* const c1 = col + outer[i + 1];
+        const bool row_sorted = std::adjacent_find(c0, c1, std::greater_equal<int>()) == c1;
+        sorted = sorted && row_sorted;
+        if (!row_sorted) continue;
+        const RowParts parts(c0, c1, begin, i, end);
+        const bool has_diag = parts.diag != c1 && *parts.diag == i && val[parts.diag - col] > 0;
         ok = ok && has_diag;
-        while (k < stop && col[k] < end) ++k;
-        const int beyond = k;
-        // counts: C = (inside - outer) + (stop - beyond), L = diag - inside, L^T = beyond - diag - 1
-        lower_first_[row + 1] = (inside - outer[i]) + (stop - beyond) + (diag - inside);
-        lower_inside_[row] = (inside - outer[i]) + (stop - beyond);
-        upper_first_[row + 1] = has_diag ? beyond - diag - 1 : 0;
-        dw_[row] = has_diag ? val[diag] / omega : 1.0;
+        const std::int64_t cross = (parts.inside - c0) + (c1 - parts.beyond);
+        lower_first_[row + 1] = cross + (parts.diag - parts.inside);
+        lower_inside_[row] = cross;
+        upper_first_[row + 1] = has_diag ? parts.beyond - parts.diag - 1 : 0;
+        dw_[row] = has_diag ? val[parts.diag - col] / omega : 1.0;
       }
     }
     if (!sorted) detail::throw_invalid("SsorCg", "each matrix row must list its columns in increasing order");
@@ -270,19 +275,17 @@ class SsorCg {
         const auto row = static_cast<std::size_t>(i);
         const int* const c0 = col + outer[i];
         const int* const c1 = col + outer[i + 1];
-        const int* const inside = std::lower_bound(c0, c1, static_cast<int>(begin));
-        const int* const diag = std::lower_bound(inside, c1, static_cast<int>(i));
-        const int* const beyond = std::lower_bound(diag, c1, static_cast<int>(end));
+        const RowParts parts(c0, c1, begin, i, end);
         const double* const v0 = val + outer[i];
         auto copy = [&](const int* from, const int* to, std::vector<int>& cols, std::vector<double>& vals, std::int64_t at) {
           std::copy(from, to, cols.data() + at);
           std::copy(v0 + (from - c0), v0 + (to - c0), vals.data() + at);
           return at + (to - from);
         };
-        std::int64_t at = copy(c0, inside, lower_col_, lower_val_, lower_first_[row]);  // C, before the block
-        at = copy(beyond, c1, lower_col_, lower_val_, at);                              // C, after it
-        copy(inside, diag, lower_col_, lower_val_, at);                                 // L
-        copy(diag + 1, beyond, upper_col_, upper_val_, upper_first_[row]);              // L^T
+        std::int64_t at = copy(c0, parts.inside, lower_col_, lower_val_, lower_first_[row]);  // C, before the block
+        at = copy(parts.beyond, c1, lower_col_, lower_val_, at);                              // C, after it
+        copy(parts.inside, parts.diag, lower_col_, lower_val_, at);                           // L
+        copy(parts.diag + 1, parts.beyond, upper_col_, upper_val_, upper_first_[row]);        // L^T
       }
     }
     return true;
