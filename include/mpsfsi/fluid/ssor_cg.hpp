@@ -297,6 +297,19 @@ class SsorCg {
         row_at_[static_cast<std::size_t>(k)] = static_cast<int>(i);
       }
     }
+    // A plain row: an interior row with no separator between its first and last column (so all
+    // its columns are interior rows of its block, numbered in the same direction). Its lower
+    // and upper parts are the stretches either side of the diagonal, found by bisection; other
+    // rows (the separator and rows next to it) are classified entry by entry.
+    separators_before_.resize(rows + 1);
+    separators_before_[0] = 0;
+    for (std::size_t i = 0; i < rows; ++i) separators_before_[i + 1] = separators_before_[i] + (row_class_[i] == separator);
+    auto plain = [&](std::int64_t i) {
+      const int* const c0 = col + outer[i];
+      const int* const c1 = col + outer[i + 1];
+      return row_class_[static_cast<std::size_t>(i)] != separator && c0 != c1 &&
+             separators_before_[static_cast<std::size_t>(c1[-1]) + 1] == separators_before_[static_cast<std::size_t>(*c0)];
+    };
     // Pass 1: per row, the sizes of its lower and upper parts, and D/omega.
     lower_first_.resize(rows + 1);
     upper_first_.resize(rows + 1);
@@ -308,11 +321,23 @@ class SsorCg {
       const std::int64_t i = row_at_[static_cast<std::size_t>(k)];
       std::int64_t lower = 0, upper = 0;
       double diagonal = 0;
-      for (std::int64_t e = outer[i]; e < outer[i + 1]; ++e) {
-        const int ke = position[col[e]];
-        lower += ke < k;
-        upper += ke > k;
-        if (ke == k) diagonal = val[e];
+      if (plain(i)) {
+        const int* const c0 = col + outer[i];
+        const int* const c1 = col + outer[i + 1];
+        const int* const d = std::lower_bound(c0, c1, static_cast<int>(i));
+        const bool has_diag = d != c1 && *d == i;
+        diagonal = has_diag ? val[d - col] : 0;
+        const std::int64_t before = d - c0, after = c1 - d - has_diag;
+        const bool reversed = row_class_[static_cast<std::size_t>(i)] == reversed_interior;
+        lower = reversed ? after : before;
+        upper = reversed ? before : after;
+      } else {
+        for (std::int64_t e = outer[i]; e < outer[i + 1]; ++e) {
+          const int ke = position[col[e]];
+          lower += ke < k;
+          upper += ke > k;
+          if (ke == k) diagonal = val[e];
+        }
       }
       ok = ok && diagonal > 0;
       lower_first_[static_cast<std::size_t>(k) + 1] = lower;
@@ -329,24 +354,39 @@ class SsorCg {
     lower_val_.resize(lower_col_.size());
     upper_col_.resize(static_cast<std::size_t>(upper_first_[rows]));
     upper_val_.resize(upper_col_.size());
-    // Pass 2: copy, renumbered (the same static schedule as the sweeps' loops over k, so each
-    // thread first touches the rows it reads most).
+    // Pass 2: copy, renumbered, each part in increasing position as far as the row's order
+    // allows (backwards in a reversed block); the same static schedule as the sweeps' loops over
+    // k, so each thread first touches the rows it reads most.
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t k = 0; k < n; ++k) {
       const std::int64_t i = row_at_[static_cast<std::size_t>(k)];
-      std::int64_t lower = lower_first_[static_cast<std::size_t>(k)];
-      std::int64_t upper = upper_first_[static_cast<std::size_t>(k)];
-      // In increasing position, as far as the row's order allows (backwards in a reversed block).
+      int* lc = lower_col_.data() + lower_first_[static_cast<std::size_t>(k)];
+      double* lv = lower_val_.data() + lower_first_[static_cast<std::size_t>(k)];
+      int* uc = upper_col_.data() + upper_first_[static_cast<std::size_t>(k)];
+      double* uv = upper_val_.data() + upper_first_[static_cast<std::size_t>(k)];
       const bool reversed = row_class_[static_cast<std::size_t>(i)] == reversed_interior;
+      if (plain(i)) {
+        const std::int64_t b = outer[i], e = outer[i + 1];
+        const std::int64_t d = std::lower_bound(col + b, col + e, static_cast<int>(i)) - col;  // the diagonal
+        auto copy = [&](std::int64_t from, std::int64_t to, int* cols, double* vals) {  // [from, to), renumbered
+          if (reversed)
+            for (std::int64_t m = to - 1; m >= from; --m) *cols++ = position[col[m]], *vals++ = val[m];
+          else
+            for (std::int64_t m = from; m < to; ++m) *cols++ = position[col[m]], *vals++ = val[m];
+        };
+        copy(b, d, reversed ? uc : lc, reversed ? uv : lv);
+        copy(d + 1, e, reversed ? lc : uc, reversed ? lv : uv);
+        continue;
+      }
       for (std::int64_t m = outer[i]; m < outer[i + 1]; ++m) {
         const std::int64_t e = reversed ? outer[i] + outer[i + 1] - 1 - m : m;
         const int ke = position[col[e]];
         if (ke < k) {
-          lower_col_[static_cast<std::size_t>(lower)] = ke;
-          lower_val_[static_cast<std::size_t>(lower++)] = val[e];
+          *lc++ = ke;
+          *lv++ = val[e];
         } else if (ke > k) {
-          upper_col_[static_cast<std::size_t>(upper)] = ke;
-          upper_val_[static_cast<std::size_t>(upper++)] = val[e];
+          *uc++ = ke;
+          *uv++ = val[e];
         }
       }
     }
@@ -359,6 +399,7 @@ class SsorCg {
   std::vector<RowClass> row_class_;
   std::vector<std::int64_t> interior_first_;  // block b's interior: positions [first[b], first[b+1]); then the separator
   std::vector<int> position_, row_at_;         // row -> position in the sweeps' order, and back
+  std::vector<int> separators_before_;         // separator rows among rows [0, i)
   std::vector<std::int64_t> lower_first_, upper_first_;  // row offsets into the copies
   std::vector<int> lower_col_, upper_col_;
   std::vector<double> lower_val_, upper_val_, dw_;
