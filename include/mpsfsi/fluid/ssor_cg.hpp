@@ -71,8 +71,9 @@ inline double sparse_row_dot(const double* val, const int* col, const double* v,
 // backwards (a "twisted" order: with two blocks both sweep towards the separator), so that rows
 // next to the separator see it as their other neighbours in the sweep's direction. On the dam
 // break's PPE two threads need 44 iterations against 43 on one; dropping the couplings between
-// blocks had needed 59, and the separator numbered after a forward block 46. The separator is a
-// thin layer (261 of 4,974 rows there), swept serially. The order depends on T, so the answer
+// blocks had needed 59, and the separator numbered after a forward block 46. The separator,
+// swept serially, is a thin layer on large 2D problems (261 of 4,974 rows there) but can be a
+// quarter of a small 3D one (README). The order depends on T, so the answer
 // does (within the tolerance); with one thread it is the original order.
 //
 // Each solve first copies the matrix, renumbered, into two row-wise arrays, the part each sweep
