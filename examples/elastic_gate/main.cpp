@@ -78,11 +78,13 @@ int run(const Options& o) {
   SolidParameters<Dim> sp;
   sp.l0 = o.l0;
   scene.set_material(sp);
+  sp.gravity = scene.gravity_vector<Dim>();  // the gate's own weight; y is up in 2D and 3D
   sp.plane_model = o.plane == "strain" ? PlaneModel::plane_strain : PlaneModel::plane_stress;
   ElasticSolver<Dim> gate(scene.gate_particles<Dim>(o.l0, clamped, tip), sp);
   for (auto i : clamped) gate.clamp(i);
   FluidParameters<Dim> fp;
   fp.l0 = o.l0;
+  fp.gravity = scene.gravity_vector<Dim>();  // not the default (last axis, z in 3D)
   using Coupler = FsiCoupler<FluidSolver<Dim>, ElasticSolver<Dim>, Scheme>;
   Scheme scheme;
   if constexpr (Scheme::iterative) scheme.tolerance = o.tolerance;

@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "mpsfsi/fluid/fluid_solver.hpp"
 #include "mpsfsi/fsi/fsi_coupler.hpp"
+#include "mpsfsi/scenes/elastic_gate.hpp"
 #include "mpsfsi/scenes/hydrostatic_plate.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 
@@ -89,6 +93,63 @@ TEST_CASE("fsi.coupler: one step keeps fluid and structure in time and loads the
     CHECK(coupler.solid().time() == doctest::Approx(coupler.time()).epsilon(1e-12));
     CHECK(coupler.total_interface_force()[1] < 0);
   }
+}
+
+// The 3D gate scene is the 2D one extruded along z, so y is its vertical in 3D too. With the
+// fluid's default gravity (the last axis) the 3D example once had gravity across the width: the
+// pressure fell linearly from one side wall to the other, the gate took a fraction of its load
+// and deflected a quarter as far as in 2D. After one coupled step with the scene's gravity, the
+// pressure in the tank (away from the gate) must be the same in every z layer and rise with depth.
+TEST_CASE("fsi.elastic_gate: the 3D extrusion is loaded along y, uniformly across its width") {
+  const scenes::ElasticGate scene;
+  const double l0 = 0.0025;
+  std::vector<std::size_t> clamped;
+  std::size_t tip = 0;
+  SolidParameters<3> sp;
+  sp.l0 = l0;
+  scene.set_material(sp);
+  sp.gravity = scene.gravity_vector<3>();
+  ElasticSolver<3> gate(scene.gate_particles<3>(l0, clamped, tip), sp);
+  for (auto i : clamped) gate.clamp(i);
+  FluidParameters<3> fp;
+  fp.l0 = l0;
+  fp.gravity = scene.gravity_vector<3>();
+  FsiCoupler<FluidSolver<3>, ElasticSolver<3>, ExplicitPartitioned> coupler(scene.fluid_particles<3>(l0), fp,
+                                                                             std::move(gate));
+  coupler.step();
+  const auto& set = coupler.fluid().particles();
+  const auto& p = coupler.fluid().pressure();
+  // Mean pressure per z layer (8 layers) in x in [0.02, 0.08] m, and in two bands of height.
+  std::vector<double> layer_sum(8, 0.0), layer_count(8, 0.0);
+  double low = 0, high = 0, n_low = 0, n_high = 0;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    if (set.kinds()[i] != ParticleKind::fluid) continue;
+    const Vec<3>& x = set.positions()[i];
+    if (x[0] < 0.02 || x[0] > 0.08) continue;
+    if (x[1] > 0.02 && x[1] < 0.04) {
+      low += p[i];
+      ++n_low;
+    } else if (x[1] > 0.08 && x[1] < 0.10) {
+      high += p[i];
+      ++n_high;
+    }
+    if (x[1] < 0.02 || x[1] > 0.10) continue;
+    const auto k = static_cast<std::size_t>(std::clamp(std::floor(x[2] / l0), 0.0, 7.0));
+    layer_sum[k] += p[i];
+    layer_count[k] += 1;
+  }
+  REQUIRE(n_low > 0);
+  REQUIRE(n_high > 0);
+  double lo = 1e300, hi = -1e300;
+  for (std::size_t k = 0; k < 8; ++k) {
+    REQUIRE(layer_count[k] > 0);
+    lo = std::min(lo, layer_sum[k] / layer_count[k]);
+    hi = std::max(hi, layer_sum[k] / layer_count[k]);
+  }
+  INFO("layer means " << lo << " .. " << hi << " Pa; lower band " << low / n_low << ", upper band " << high / n_high);
+  CHECK(lo > 0);
+  CHECK(hi - lo < 0.05 * hi);  // the wrong gravity gave layer means 0 .. 86 Pa
+  CHECK(low / n_low > high / n_high);
 }
 
 }  // TEST_SUITE

@@ -18,14 +18,25 @@ namespace mpsfsi::scenes {
 // `gate_thickness` thick, clamped at its top end; above the gate a rigid wall holds the rest of
 // the column. The gate's lower end is free and rests on the floor; at t = 0 the water pushes it
 // open. The floor runs `floor_length` downstream to a low end wall. In 3D everything is extruded
-// by `width` between two side walls. Lengths are rounded to whole numbers of spacings l0; the
-// rounded geometry is what the scene builds (gate_length_used()).
+// by `width` between two side walls (along z), so y is the vertical in 2D and in 3D: pass
+// gravity_vector() to both solvers (FluidParameters' default gravity points along the last axis,
+// which is z in 3D). Lengths are rounded to whole numbers of spacings l0; the rounded geometry is
+// what the scene builds (gate_length_used()).
 struct ElasticGate {
   double water_width = 0.1, water_height = 0.14;
   double gate_length = 0.079, gate_thickness = 0.005;
   double density = 1100, youngs_modulus = 10e6, poisson_ratio = 0.4;  // rubber
   double floor_length = 0.3, end_wall_height = 0.03, width = 0.02;     // width only in 3D
   int wall_layers = 3;  // one wall layer and the rest dummy; also the clamp's length in l0
+  double gravity = 9.81;
+
+  // Gravity along -y, the scene's vertical in 2D and 3D.
+  template <int Dim>
+  Vec<Dim> gravity_vector() const {
+    Vec<Dim> g = Vec<Dim>::Zero();
+    g[1] = -gravity;
+    return g;
+  }
 
   template <class Parameters>
   void set_material(Parameters& p) const {
