@@ -249,3 +249,44 @@ TEST_CASE("crack entry: a crack opened under water becomes surface and the water
 }
 
 }  // TEST_SUITE
+
+// Long: the resolution study of the plate alone (label "validation", about 4 minutes on 2 cores).
+TEST_SUITE("validation.fsi") {
+
+TEST_CASE("hydrostatic plate alone: the deflection converges to within 5 % of Euler-Bernoulli") {
+  // The coupled deflection follows the plate alone under rho g H within 0.34 % at h/l0 = 4 (the
+  // verification above), so what separates it from the analytic 6.43e-5 m is the plate's own
+  // discretisation. Its error, measured at h/l0 = 4, 5, 8, 10, 16, 20 (README), fits
+  //   e(n) = e_inf + b / n + c / n^2,  n = h / l0,
+  // with c close to the midpoint rule's 1/n^2 deficit in the moment of inertia and b the
+  // first-order surface and clamp error. Here the three finest affordable levels give e_inf by
+  // that fit. The claim: the error falls with every refinement, and the converged plate meets
+  // issue 6's 5 %, from above (the 2D plate has shear deformation, which Euler-Bernoulli
+  // leaves out: Timoshenko's estimate is +3.6 % at L/h = 20).
+  scenes::HydrostaticPlate scene;
+  const double analytic = scene.deflection(false);
+  const std::array<double, 3> n{8, 10, 16};
+  std::array<double, 3> e{};
+  for (std::size_t k = 0; k < n.size(); ++k) {
+    e[k] = plate_alone(scene, scene.thickness / n[k], 0.06) / analytic - 1;
+    std::printf("plate alone, h/l0 = %.0f: %+.2f %% of the analytic deflection\n", n[k], 100 * e[k]);
+  }
+  CHECK(e[0] > e[1]);
+  CHECK(e[1] > e[2]);
+  // Solve the 3x3 system for (e_inf, b, c) by Cramer's rule.
+  auto det3 = [](const std::array<std::array<double, 3>, 3>& m) {
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  std::array<std::array<double, 3>, 3> m{}, m0{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    m[k] = {1.0, 1 / n[k], 1 / (n[k] * n[k])};
+    m0[k] = {e[k], 1 / n[k], 1 / (n[k] * n[k])};
+  }
+  const double converged = det3(m0) / det3(m);
+  std::printf("extrapolated to h/l0 -> infinity: %+.2f %%\n", 100 * converged);
+  CHECK(converged > 0);
+  CHECK(converged < 0.05);
+}
+
+}  // TEST_SUITE
