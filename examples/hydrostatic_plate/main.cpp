@@ -116,11 +116,8 @@ int run_alone(const scenes::HydrostaticPlate& scene, const Options& o) {
   std::size_t middle = 0;
   ElasticSolver<2> plate(scene.plate_particles(o.l0, clamped, middle), plate_parameters(scene, o));
   for (auto i : clamped) plate.clamp(i);
-  const double q = scene.fluid_density * scene.gravity * scene.water_height;
-  const auto& x = plate.particles().positions();
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if (x[i][1] > -o.l0 && x[i][0] > 0 && x[i][0] < scene.span) plate.external_force()[i] = Vec<2>(0, -q * o.l0);
-  const double y0 = x[middle][1];
+  scene.apply_water_load(plate, o.l0);
+  const double y0 = plate.particles().positions()[middle][1];
   std::printf("plate alone, %zu particles, l0 = %g m, dt = %.3g s, to t = %g s\n", plate.particles().size(), o.l0,
               plate.dt(), o.end);
   std::filesystem::create_directories(o.out);

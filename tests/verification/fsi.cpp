@@ -91,11 +91,8 @@ double plate_alone(const scenes::HydrostaticPlate& scene, double l0, double t_en
   std::size_t middle = 0;
   ElasticSolver<2> plate(scene.plate_particles(l0, clamped, middle), plate_parameters(scene, l0));
   for (auto i : clamped) plate.clamp(i);
-  const double q = scene.fluid_density * scene.gravity * scene.water_height;
-  const auto& x = plate.particles().positions();
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if (x[i][1] > -l0 && x[i][0] > 0 && x[i][0] < scene.span) plate.external_force()[i] = Vec<2>(0, -q * l0);
-  const double y0 = x[middle][1];
+  scene.apply_water_load(plate, l0);
+  const double y0 = plate.particles().positions()[middle][1];
   plate.advance_to(t_end);
   return y0 - plate.particles().positions()[middle][1];
 }

@@ -34,6 +34,16 @@ struct HydrostaticPlate {
     return q * std::pow(span, 4) / (384 * flexural_rigidity());
   }
 
+  // The exact hydrostatic load rho_f g H as external forces on the plate's top row between the
+  // clamps (one surface element l0 each): the plate alone under what the water should apply.
+  template <class Solid>
+  void apply_water_load(Solid& plate, double l0) const {
+    const double q = fluid_density * gravity * water_height;
+    const auto& x = plate.particles().positions();
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (x[i][1] > -l0 && x[i][0] > 0 && x[i][0] < span) plate.external_force()[i] = Vec<2>(0, -q * l0);
+  }
+
   template <class Parameters>
   void set_material(Parameters& p) const {
     p.density = density;
