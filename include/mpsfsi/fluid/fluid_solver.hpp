@@ -236,6 +236,10 @@ class FluidSolver {
   // with fluid in it.
   const std::vector<Index>& enclosed_particles() const { return ppe_.enclosed(); }
   long long steps_with_enclosed_regions() const { return enclosed_steps_; }
+  // The collision policy object, to change its settings (KoshizukaCollision: distance_ratio,
+  // restitution) after construction.
+  typename Policies::collision& collision() { return collision_; }
+  const typename Policies::collision& collision() const { return collision_; }
   const FluidStepTimings& last_timings() const { return timings_; }
   const parameters_type& parameters() const { return p_; }
   const MpsConstants<double>& density_constants() const { return c_n_; }
