@@ -104,8 +104,8 @@ TEST_CASE("three-point bending: l0 = 1 mm against 2 mm") {
   CHECK(std::abs(change) <= 0.03);  // issue 5, acceptance 3
 }
 
-// Known failure (issue 5 open): in 3D the crack starts at the bottom centre, runs to the top and
-// the load drops to zero, but some bonds survive and the two halves stay connected.
+// Known failure (issue 5 open): in 3D at this resolution the crack starts at the bottom centre
+// and arrests there (15 failures in the bottom row, the load keeps rising; README).
 TEST_CASE("three-point bending: case 02 in 3D breaks the same way" * doctest::may_fail()) {
   const auto c = bending::table1()[0];
   bending::Options o;
