@@ -54,6 +54,28 @@ TEST_CASE("fluid.fluid_solver: bad input gets a clear error") {
   }
 }
 
+TEST_CASE("fluid.fluid_solver: the automatic step follows the stability limit, capped at max_dt") {
+  FluidParameters<2> p;
+  p.l0 = 0.005;
+  SUBCASE("uncapped") {
+    FluidSolver<2> solver(small_tank(), p);
+    const double limit = solver.stable_dt();
+    solver.step();
+    CHECK(solver.last_dt() == doctest::Approx(limit).epsilon(1e-12));
+  }
+  SUBCASE("capped below the limit") {
+    p.max_dt = 1e-4;
+    FluidSolver<2> solver(small_tank(), p);
+    REQUIRE(solver.stable_dt() > 2 * p.max_dt);  // from rest: 0.2 sqrt(l0 / g) = 4.5 ms
+    solver.step();
+    CHECK(solver.last_dt() == doctest::Approx(1e-4).epsilon(1e-12));
+  }
+  SUBCASE("a negative cap is an error") {
+    p.max_dt = -1;
+    CHECK_THROWS_WITH_AS(FluidSolver<2>(small_tank(), p), doctest::Contains("max_dt"), InvalidInput);
+  }
+}
+
 TEST_CASE("fluid.fluid_solver: a PPE that cannot converge is reported with step and time") {
   FluidParameters<2> p;
   p.l0 = 0.005;

@@ -43,8 +43,11 @@ struct FluidParameters {
   Scalar surface_beta = Scalar(0.97);       // free surface where n < beta n0
   NegativePressure negative_pressure = NegativePressure::clamp_to_zero;
   EnclosedRegion enclosed_region = EnclosedRegion::error;
-  // Time step: fixed when dt > 0, else automatic from the limits below.
+  // Time step: fixed when dt > 0, else automatic from the limits below, capped at max_dt when
+  // max_dt > 0 (a coupled structure or an output cadence may need shorter steps than the fluid:
+  // from rest the Courant limit alone allows steps of several ms).
   Scalar dt = 0;
+  Scalar max_dt = 0;
   Scalar courant = Scalar(0.2);             // dt <= courant l0 / max|u|
   Scalar viscous_number = Scalar(0.2);      // dt <= viscous_number l0^2 / nu
   bool warn_only_on_unstable_dt = false;    // a fixed dt above the limit throws unless set
@@ -78,6 +81,7 @@ struct FluidParameters {
     need(gamma >= 0 && gamma <= 1, "gamma must lie in [0, 1]");
     need(surface_beta > 0 && surface_beta < 1, "surface_beta must lie in (0, 1)");
     need(std::isfinite(dt) && dt >= 0, "dt must be >= 0 (0 selects the automatic step)");
+    need(std::isfinite(max_dt) && max_dt >= 0, "max_dt must be >= 0 (0: the automatic step is not capped)");
     need(courant > 0 && courant <= 1, "courant must lie in (0, 1]");
     need(viscous_number > 0, "viscous_number must be positive");
     need(ppe_tolerance > 0 && ppe_tolerance < 1, "ppe_tolerance must lie in (0, 1)");

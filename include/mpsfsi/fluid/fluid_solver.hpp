@@ -301,7 +301,7 @@ class FluidSolver {
 
   double choose_dt() {
     const double limit = stable_dt();
-    if (p_.dt <= 0) return limit;
+    if (p_.dt <= 0) return p_.max_dt > 0 ? std::min(limit, p_.max_dt) : limit;
     if (p_.dt > limit) {
       const std::string msg = "FluidSolver: time step " + std::to_string(p_.dt) + " s exceeds the stability limit " +
                               std::to_string(limit) + " s (Courant " + std::to_string(p_.courant) +
