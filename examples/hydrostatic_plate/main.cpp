@@ -22,7 +22,7 @@
 // --require p makes the run fail (exit code 3) when the averaged deflection is further than p %
 // from the analytic one.
 // --clamp-columns n sets how far (in layers) the clamped plate runs into the side walls and how
-// thick the walls are (the scene's default 3). The plate's end faces are structure surface,
+// thick the walls are (the scene's default 5). The plate's end faces are structure surface,
 // hence free-surface (P = 0) rows of the PPE; at 3 layers they lie within the Laplacian's reach
 // (3.1 l0) of the corner wall particles and lower their pressure, which draws the corner water
 // in (README).
