@@ -67,10 +67,61 @@ TEST_CASE("fsi.coupler: the structure joins the fluid as wall on its surface and
   const auto& kinds = coupler.fluid().particles().kinds();
   const auto& xs = coupler.solid().particles().positions();
   REQUIRE(kinds.size() == n_fluid_set + xs.size());
+  const double depth = c.scene.clamp_columns * c.l0;
   for (std::size_t s = 0; s < xs.size(); ++s) {
-    const bool outer = xs[s][1] > -c.l0 || xs[s][1] < -c.scene.thickness + c.l0 || xs[s][0] < -2.5 * c.l0 ||
-                       xs[s][0] > c.scene.span + 2.5 * c.l0;
-    CHECK(kinds[n_fluid_set + s] == (outer ? ParticleKind::wall : ParticleKind::dummy));
+    const double x = xs[s][0], y = xs[s][1];
+    // Interior: dummy. Bottom row, wetted top row, the rows near the free end faces: wall.
+    const bool outer = y > -c.l0 || y < -c.scene.thickness + c.l0 || x < -depth + 2 * c.l0 ||
+                       x > c.scene.span + depth - 2 * c.l0;
+    // The top row under the side walls, all but its corner particle, is covered by them: dummy.
+    const bool covered = y > -c.l0 && ((x < 0 && x > -depth + c.l0) || (x > c.scene.span && x < c.scene.span + depth - c.l0));
+    CAPTURE(x);
+    CAPTURE(y);
+    CHECK(kinds[n_fluid_set + s] == (outer && !covered ? ParticleKind::wall : ParticleKind::dummy));
+  }
+}
+
+// The plate continues under the tank's side walls (clamped there). Its top row under them is
+// structure surface, but its outward site lies inside the walls: as a strip of wall particles it
+// would carry the PPE's pressure down to the P = 0 end faces and draw the corner water in. Covered
+// particles join the fluid as dummy and take no load; the option off restores every surface
+// particle as a wall.
+TEST_CASE("fsi.coupler: structure surface covered by the tank's walls is dummy and takes no load") {
+  SmallCase c;
+  std::vector<std::size_t> top_under_walls;
+  {
+    const auto plate = c.solid(c.l0);
+    const auto& xs = plate.particles().positions();
+    for (std::size_t s = 0; s < xs.size(); ++s)
+      if (xs[s][1] > -c.l0 && (xs[s][0] < 0 || xs[s][0] > c.scene.span)) top_under_walls.push_back(s);
+  }
+  REQUIRE(top_under_walls.size() == 2 * static_cast<std::size_t>(c.scene.clamp_columns));
+  for (const bool cover : {true, false}) {
+    CAPTURE(cover);
+    CouplingParameters cp;
+    cp.covered_surface_as_dummy = cover;
+    FsiCoupler<FluidSolver<2>, ElasticSolver<2>> coupler(c.scene.fluid_particles(c.l0), c.fluid_parameters(),
+                                                         c.solid(c.l0), cp);
+    coupler.step();
+    const auto& kinds = coupler.fluid().particles().kinds();
+    const auto& xs = coupler.solid().particles().positions();
+    std::size_t covered = 0;
+    for (const auto s : top_under_walls) {
+      const bool dummy = kinds[coupler.structure_offset() + s] == ParticleKind::dummy;
+      CHECK(dummy == !coupler.on_surface()[s]);
+      if (dummy) {
+        ++covered;
+        CHECK(coupler.interface_force()[s].norm() == 0);
+      }
+    }
+    // All but the corner particle at each end face (its outward site is diagonal, off the wall
+    // lattice) are covered; none without the option.
+    CHECK(covered == (cover ? top_under_walls.size() - 2 : 0));
+    // The wetted top row between the walls stays wall either way and carries the load.
+    for (std::size_t s = 0; s < xs.size(); ++s)
+      if (xs[s][1] > -c.l0 && xs[s][0] > 0 && xs[s][0] < c.scene.span)
+        CHECK(kinds[coupler.structure_offset() + s] == ParticleKind::wall);
+    CHECK(coupler.total_interface_force()[1] < 0);
   }
 }
 

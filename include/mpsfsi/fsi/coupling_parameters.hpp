@@ -20,6 +20,10 @@ struct CouplingParameters {
   // Eq 10: the interface acceleration as a coupling term in the fluid predictor (the paper's
   // scheme). The wall velocity enters the PPE either way.
   bool interface_acceleration = true;
+  // A structure surface particle whose outward site x + l0 n lies inside the tank's fixed walls
+  // (the fluid set's own wall and dummy particles, within 0.5 l0) is covered: a dummy particle
+  // for the fluid, not loaded (fsi_coupler.hpp). Off: every surface particle is a wall.
+  bool covered_surface_as_dummy = true;
   // Scale eq 18's pressure by the wetted fraction of a partially wetted element (interface_load.hpp).
   bool partial_wetting_correction = true;
 

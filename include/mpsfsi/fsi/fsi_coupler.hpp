@@ -31,6 +31,12 @@ namespace mpsfsi {
 //   the PPE, the rest as dummy particles. Positions, velocities and the surface are refreshed
 //   from the structure before every fluid step, so deformation and cracks reach the fluid; fluid
 //   may enter a crack once it opens.
+// - A surface particle whose outward lattice site x_i + l0 n_i lies inside the tank's fixed walls
+//   (a wall or dummy particle of the fluid's own set within 0.5 l0 of it) is covered, not wetted:
+//   it joins the fluid as a dummy particle and takes no load (CouplingParameters::
+//   covered_surface_as_dummy). A structure clamped into a tank wall would otherwise put a strip
+//   of wall particles under that wall, ending in the structure's end face, a P = 0 row of the
+//   PPE; the pressure drains along it and draws the water in the corner (README, hydrostatic plate).
 // - The interface pressure at x_i + 0.5 l0 n_i (eqs 18-19) becomes the structure's load.
 // - The structure sub-steps through each fluid step (dt_f / dt_s steps of its own stable dt).
 // - The interface acceleration enters the fluid predictor (eq 10), unless switched off.
@@ -64,7 +70,17 @@ class FsiCoupler {
         fluid_(with_structure(std::move(fluid_particles), fluid_parameters, solid_, c_, normal_, on_surface_),
                fluid_parameters),
         search_(c_.interface_radius_ratio * fluid_parameters.l0 + 0.5 * fluid_parameters.l0),
+        tank_search_(0.5 * fluid_parameters.l0),
         structure_n0_(structure_n0(solid_)) {
+    if (c_.covered_surface_as_dummy) {
+      // The tank's fixed walls: the fluid set's own wall and dummy particles, which do not move.
+      const auto& set = fluid_.particles();
+      VecArray<dimension, scalar_type> tank;
+      for (std::size_t i = 0; i < offset_; ++i)
+        if (set.kinds()[i] != ParticleKind::fluid) tank.push_back(set.positions()[i]);
+      tank_search_.build(tank);
+      sync_walls();
+    }
     if (c_.partial_wetting_correction)
       full_weight_ = full_wetting_weight<Weight, dimension, scalar_type>(fluid_.parameters().l0, re());
     last_omega_ = initial_omega(scheme_);
@@ -122,7 +138,8 @@ class FsiCoupler {
   // Structure particle s is particle structure_offset() + s of the fluid's set.
   std::size_t structure_offset() const { return offset_; }
   // Per structure particle: the fluid's load (N, per unit thickness in 2D), the interface
-  // pressure of eq 18, the outward normal and whether it is on the surface.
+  // pressure of eq 18, the outward normal and whether it is on the wetted surface (on the
+  // structure's surface and not covered by the tank's fixed walls).
   const VecArray<dimension, scalar_type>& interface_force() const { return load_; }
   const std::vector<scalar_type>& interface_pressure() const { return interface_pressure_; }
   const VecArray<dimension, scalar_type>& normals() const { return normal_; }
@@ -179,6 +196,7 @@ class FsiCoupler {
   void sync_walls() {
     structure_normals(solid_.bonds(), solid_.particles().positions(), structure_n0_, c_.surface_threshold, normal_,
                       on_surface_);
+    if (c_.covered_surface_as_dummy) uncover_buried_surface();
     auto& set = fluid_.particles();
     const auto& sp = solid_.particles();
     for (std::size_t s = 0; s < sp.size(); ++s) {
@@ -186,6 +204,18 @@ class FsiCoupler {
       set.velocities()[offset_ + s] = sp.velocities()[s];
       set.kinds()[offset_ + s] = on_surface_[s] ? ParticleKind::wall : ParticleKind::dummy;
     }
+  }
+
+  // Clears on_surface_ where the outward site x + l0 n lies inside the tank's fixed walls.
+  void uncover_buried_surface() {
+    if (tank_search_.num_points() == 0) return;
+    const auto& x = solid_.particles().positions();
+    const scalar_type l0 = fluid_.parameters().l0;
+    sites_.resize(x.size());
+    for (std::size_t s = 0; s < x.size(); ++s) sites_[s] = on_surface_[s] ? vec_type(x[s] + l0 * normal_[s]) : x[s];
+    tank_search_.query(sites_, covering_);
+    for (std::size_t s = 0; s < x.size(); ++s)
+      if (on_surface_[s] && covering_.count(s) > 0) on_surface_[s] = 0;
   }
 
   void find_candidates() {
@@ -272,8 +302,10 @@ class FsiCoupler {
   std::vector<std::uint8_t> on_surface_;
   Fluid fluid_;
   CellListSearch<dimension, scalar_type> search_;
+  CellListSearch<dimension, scalar_type> tank_search_;  // the tank's fixed walls, radius 0.5 l0
   scalar_type structure_n0_;
-  BasicNeighborList<scalar_type> candidates_;
+  BasicNeighborList<scalar_type> candidates_, covering_;
+  VecArray<dimension, scalar_type> sites_;
   VecArray<dimension, scalar_type> load_, trial_, residual_, previous_residual_;
   VecArray<dimension, scalar_type> structure_acceleration_, velocity_start_;
   std::vector<scalar_type> interface_pressure_, weight_sum_;
