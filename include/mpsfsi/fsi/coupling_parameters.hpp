@@ -21,7 +21,7 @@ struct CouplingParameters {
   // scheme). The wall velocity enters the PPE either way.
   bool interface_acceleration = true;
   // A structure surface particle whose outward site x + l0 n lies inside the tank's fixed walls
-  // (the fluid set's own wall and dummy particles, within 0.5 l0) is covered: a dummy particle
+  // (the fluid set's own wall and dummy particles, within 0.25 l0) is covered: a dummy particle
   // for the fluid, not loaded (fsi_coupler.hpp). Off: every surface particle is a wall.
   bool covered_surface_as_dummy = true;
   // Scale eq 18's pressure by the wetted fraction of a partially wetted element (interface_load.hpp).

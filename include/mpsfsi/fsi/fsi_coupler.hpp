@@ -32,11 +32,16 @@ namespace mpsfsi {
 //   from the structure before every fluid step, so deformation and cracks reach the fluid; fluid
 //   may enter a crack once it opens.
 // - A surface particle whose outward lattice site x_i + l0 n_i lies inside the tank's fixed walls
-//   (a wall or dummy particle of the fluid's own set within 0.5 l0 of it) is covered, not wetted:
+//   (a wall or dummy particle of the fluid's own set within 0.25 l0 of it) is covered, not wetted:
 //   it joins the fluid as a dummy particle and takes no load (CouplingParameters::
 //   covered_surface_as_dummy). A structure clamped into a tank wall would otherwise put a strip
 //   of wall particles under that wall, ending in the structure's end face, a P = 0 row of the
 //   PPE; the pressure drains along it and draws the water in the corner (README, hydrostatic plate).
+//   0.25 l0: on a structure lying on the walls' lattice, the site of a covered flat face is within
+//   0.07 l0 of a wall particle (normals tilt by up to 0.03 near an end), while the diagonal site of
+//   a corner particle, wetted on its other side (a crack's foot on the tank floor), is 0.39-0.44 l0
+//   from one. Off the walls' lattice a covered face may be missed: it stays a wall, as without
+//   the option.
 // - The interface pressure at x_i + 0.5 l0 n_i (eqs 18-19) becomes the structure's load.
 // - The structure sub-steps through each fluid step (dt_f / dt_s steps of its own stable dt).
 // - The interface acceleration enters the fluid predictor (eq 10), unless switched off.
@@ -70,7 +75,7 @@ class FsiCoupler {
         fluid_(with_structure(std::move(fluid_particles), fluid_parameters, solid_, c_, normal_, on_surface_),
                fluid_parameters),
         search_(c_.interface_radius_ratio * fluid_parameters.l0 + 0.5 * fluid_parameters.l0),
-        tank_search_(0.5 * fluid_parameters.l0),
+        tank_search_(0.25 * fluid_parameters.l0),
         structure_n0_(structure_n0(solid_)) {
     if (c_.covered_surface_as_dummy) {
       // The tank's fixed walls: the fluid set's own wall and dummy particles, which do not move.
@@ -302,7 +307,7 @@ class FsiCoupler {
   std::vector<std::uint8_t> on_surface_;
   Fluid fluid_;
   CellListSearch<dimension, scalar_type> search_;
-  CellListSearch<dimension, scalar_type> tank_search_;  // the tank's fixed walls, radius 0.5 l0
+  CellListSearch<dimension, scalar_type> tank_search_;  // the tank's fixed walls, radius 0.25 l0
   scalar_type structure_n0_;
   BasicNeighborList<scalar_type> candidates_, covering_;
   VecArray<dimension, scalar_type> sites_;
