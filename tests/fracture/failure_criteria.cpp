@@ -3,6 +3,7 @@
 
 #include <random>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "mpsfsi/fracture/failure_criteria.hpp"
@@ -93,6 +94,47 @@ TEST_CASE_TEMPLATE("fracture.failure_criteria: invariant under rotation of the s
       CHECK(MaxNormalStressAngle::principal<2, double>(Mat<2>(r * s * r.transpose()), m) == doctest::Approx(s1).epsilon(1e-12));
     }
   }
+}
+
+// The crack-plane rule cuts on the normal's - side, so the sign of the direction decides which
+// neighbour column a crack opens towards: it must follow one convention (first non-zero component
+// positive) in both dimensions, and a 3D state that is a 2D one with a weaker z gives the 2D normal.
+TEST_CASE("fracture.failure_criteria: the crack normal has the same sign convention in 2D and 3D") {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-2e6, 2e6);
+  int flipped_by_eigen = 0;
+  for (int k = 0; k < 500; ++k) {
+    const Mat<2> s2 = tensor2(u(rng), u(rng), u(rng));
+    Mat<3> s3 = Mat<3>::Zero();
+    s3.topLeftCorner<2, 2>() = s2;
+    s3(2, 2) = -3e6;  // below every in-plane principal stress: sigma_1 lies in the plane
+    Vec<2> n2;
+    Vec<3> n3;
+    const double a = MaxPrincipalStress::principal<2, double>(s2, n2);
+    const double b = MaxPrincipalStress::principal<3, double>(s3, n3);
+    CHECK(b == doctest::Approx(a).epsilon(1e-12));
+    CHECK(n2[0] >= 0);
+    CHECK(n3[0] >= 0);
+    CHECK((n3 - Vec<3>(n2[0], n2[1], 0)).norm() < 1e-8);
+    // A general 3D state: the first non-zero component is positive.
+    Mat<3> g;
+    for (int i = 0; i < 3; ++i)
+      for (int j = i; j < 3; ++j) g(i, j) = g(j, i) = u(rng);
+    MaxPrincipalStress::principal<3, double>(g, n3);
+    CHECK(n3[0] > 0);
+    for (const Mat<3>& t : {s3, g}) {
+      Eigen::SelfAdjointEigenSolver<Mat<3>> eig(t);
+      flipped_by_eigen += eig.eigenvectors().col(2)[0] < 0 ? 1 : 0;
+    }
+  }
+  // Eigen's own sign is arbitrary: the convention is not vacuous.
+  CHECK(flipped_by_eigen > 0);
+  // Normals with a zero x component: the next component decides.
+  Vec<3> n;
+  MaxPrincipalStress::principal<3, double>(Mat<3>(Vec<3>(0, 2e6, 1e6).asDiagonal()), n);
+  CHECK((n - Vec<3>(0, 1, 0)).norm() < 1e-12);
+  MaxPrincipalStress::principal<3, double>(Mat<3>(Vec<3>(0, 1e6, 2e6).asDiagonal()), n);
+  CHECK((n - Vec<3>(0, 0, 1)).norm() < 1e-12);
 }
 
 TEST_CASE("fracture.failure_criteria: NoFailure never reaches any strength") {

@@ -30,6 +30,11 @@ struct NoFailure {
 
 // sigma_1 as the largest eigenvalue of the stress tensor and its eigenvector (the paper's
 // "first principal stress"): closed form in 2D, Eigen's self-adjoint solver in 3D.
+// A principal direction has no sign, but the crack-plane rule (crack_plane.hpp) puts the cut on
+// the normal's - side, so the sign chooses which neighbour column a crack opens towards. Both
+// dimensions return the same convention: the first non-zero component is positive (n_x >= 0;
+// the 2D closed form gives it with theta in (-pi/2, pi/2]; Eigen's sign is arbitrary, so the 3D
+// vector is flipped to it).
 struct MaxPrincipalStress {
   static constexpr bool enabled = true;
   template <int Dim, class Scalar>
@@ -46,6 +51,11 @@ struct MaxPrincipalStress {
     } else {
       Eigen::SelfAdjointEigenSolver<Mat<Dim, Scalar>> eig(Scalar(0.5) * (sigma + sigma.transpose()));
       direction = eig.eigenvectors().col(Dim - 1);  // eigenvalues ascend
+      for (int k = 0; k < Dim; ++k) {
+        if (direction[k] == Scalar(0)) continue;
+        if (direction[k] < Scalar(0)) direction = -direction;
+        break;
+      }
       return eig.eigenvalues()[Dim - 1];
     }
   }

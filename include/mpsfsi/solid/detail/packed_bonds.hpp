@@ -38,16 +38,20 @@ class PackedBonds {
     slots_ = static_cast<std::size_t>(first_[n]);
     data_.assign(static_cast<std::size_t>(rows) * slots_, Scalar(0));
     neighbor_.resize(slots_);
-    MPSFSI_OMP(parallel for schedule(static))
+    std::size_t band = 0;
+    MPSFSI_OMP(parallel for schedule(static) reduction(max : band))
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       for (Offset s = first_[i]; s < first_[i + 1]; ++s) {
         const Offset b = bonds.begin(i) + (s - first_[i]);
         const auto k = static_cast<std::size_t>(s);
         neighbor_[k] = b < bonds.end(i) ? bonds.neighbor(b) : static_cast<Index>(i);
+        const auto j = static_cast<std::size_t>(neighbor_[k]);
+        band = std::max(band, j > i ? j - i : i - j);
       }
       update(fit, bonds, i);
     }
+    bandwidth_ = band;
   }
 
   // Copies particle i's weights and coefficients again (after its bonds were cut and its fit
@@ -66,6 +70,9 @@ class PackedBonds {
   Offset begin(std::size_t i) const { return first_[i]; }
   Offset end(std::size_t i) const { return first_[i + 1]; }
   std::size_t longest_row() const { return longest_; }
+  // The largest |i - j| over all bonds (cutting bonds never raises it): a loop over particles
+  // lo..hi-1 touches no particle outside [lo - bandwidth, hi + bandwidth).
+  std::size_t bandwidth() const { return bandwidth_; }
   const Index* neighbors() const { return neighbor_.data(); }
   const Scalar* reference_vector(int a) const { return row(a); }
   const Scalar* beta() const { return row(Dim); }
@@ -79,6 +86,7 @@ class PackedBonds {
   std::vector<Offset> first_{0};
   std::size_t slots_ = 0;
   std::size_t longest_ = 0;
+  std::size_t bandwidth_ = 0;
   std::vector<Scalar> data_;
   std::vector<Index> neighbor_;
 };
