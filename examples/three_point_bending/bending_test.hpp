@@ -76,6 +76,10 @@ struct Result {
   double flexural_strain = 0;     // 6 h dd / L^2 with the simulated deflection
   double final_load_fraction = 1; // load at the end / peak load
   bool broken = false;            // the beam is in two pieces (intact-bond components)
+  // Diagnostics of a beam that is still one piece: intact bonds stretched beyond 5 % (none in an
+  // unbroken beam, whose strain stays below 0.5 %), and whether it is in two pieces without them.
+  std::size_t overstretched_bonds = 0;
+  bool broken_but_overstretched = false;
   double crack_offset = 0;        // largest |x| of a failed particle (reference), m
   double crack_start_x = 0, crack_start_y = 0;  // the first failed particle (reference), m
   double crack_top = 0;           // highest failed particle (reference), m
@@ -86,9 +90,18 @@ struct Result {
 
 namespace detail {
 
-// Number of beam particles in each connected piece of the intact-bond graph.
+// Stretch |r_ij| / |r0_ij| - 1 of bond b from particle i.
+template <class Solver>
+double stretch(const Solver& s, std::size_t i, mpsfsi::Offset b) {
+  const auto j = static_cast<std::size_t>(s.bonds().neighbor(b));
+  return (s.particles().positions()[j] - s.particles().positions()[i]).norm() / s.bonds().r0(b).norm() - 1;
+}
+
+// Number of beam particles in each connected piece of the intact-bond graph; with
+// max_stretch > 0, intact bonds stretched beyond it are left out (a diagnostic: ice breaks at a
+// strain of about 0.4 %, so an intact bond stretched by several per cent spans an opening).
 template <int Dim, class Solver>
-std::vector<std::size_t> pieces(const Solver& s, std::size_t beam_count) {
+std::vector<std::size_t> pieces(const Solver& s, std::size_t beam_count, double max_stretch = 0) {
   std::vector<int> label(beam_count, -1);
   std::vector<std::size_t> sizes, stack;
   for (std::size_t start = 0; start < beam_count; ++start) {
@@ -104,6 +117,7 @@ std::vector<std::size_t> pieces(const Solver& s, std::size_t beam_count) {
       for (mpsfsi::Offset b = s.bonds().begin(i); b < s.bonds().end(i); ++b) {
         const auto j = static_cast<std::size_t>(s.bonds().neighbor(b));
         if (!s.bonds().intact(b) || j >= beam_count || label[j] >= 0) continue;
+        if (max_stretch > 0 && stretch(s, i, b) > max_stretch) continue;
         label[j] = id;
         stack.push_back(j);
       }
@@ -329,6 +343,31 @@ Result run(const IceBeamCase& c, const Options& o) {
   std::size_t big = 0;
   for (const auto n : sizes) big += n > beam_count / 10 ? 1 : 0;
   r.broken = big >= 2;
+  constexpr double overstretched = 0.05;
+  if (!r.broken) {
+    std::unique_ptr<CsvWriter> open_bonds;
+    if (!o.out.empty())
+      open_bonds = std::make_unique<CsvWriter>(
+          o.out + "/case" + c.name + "_overstretched_bonds.csv",
+          std::vector<std::string>{"i", "j", "x0_i", "y0_i", "z0_i", "x0_j", "y0_j", "z0_j", "stretch", "intact_i",
+                                   "intact_j"});
+    for (std::size_t i = 0; i < beam_count; ++i)
+      for (Offset b = s.bonds().begin(i); b < s.bonds().end(i); ++b) {
+        const auto j = static_cast<std::size_t>(s.bonds().neighbor(b));
+        if (j <= i || j >= beam_count || !s.bonds().intact(b)) continue;
+        const double e = detail::stretch(s, i, b);
+        if (e <= overstretched) continue;
+        ++r.overstretched_bonds;
+        const vec xi = s.reference_positions()[i], xj = s.reference_positions()[j];
+        if (open_bonds)
+          open_bonds->row({double(i), double(j), xi[0], xi[1], Dim == 3 ? xi[Dim - 1] : 0.0, xj[0], xj[1],
+                           Dim == 3 ? xj[Dim - 1] : 0.0, e, double(s.bonds().intact_count(i)),
+                           double(s.bonds().intact_count(j))});
+      }
+    std::size_t without = 0;
+    for (const auto n : detail::pieces<Dim>(s, beam_count, overstretched)) without += n > beam_count / 10 ? 1 : 0;
+    r.broken_but_overstretched = without >= 2;
+  }
   // The crack path: where particles failed, in the reference configuration.
   if (!s.failure_log().empty()) {
     const vec first = s.reference_positions()[s.failure_log().front().particle];
