@@ -117,8 +117,8 @@ class CorrectedTotalLagrangian {
     {
       const int thread = parallel::thread_id();
       const int team = parallel::team_size();
-      const std::size_t first = detail::block_begin(count, thread, team);
-      const std::size_t last = detail::block_begin(count, thread + 1, team);
+      const std::size_t block_lo = detail::block_begin(count, thread, team);
+      const std::size_t block_hi = detail::block_begin(count, thread + 1, team);
       vec_type* const mine = thread == 0 ? out : partial + static_cast<std::size_t>(thread - 1) * x.size();
       // Per-thread copies of the row pointers: shared ones would be reloaded after every store.
       const Scalar* r0[Dim];
@@ -128,14 +128,14 @@ class CorrectedTotalLagrangian {
       Scalar* const du = scratch + static_cast<std::size_t>(thread) * stride;
       // Every thread zeroes its block of `force` (thread 0 writes all of it below) and the
       // stretch of its own copy that it writes.
-      std::fill(out + first, out + last, vec_type::Zero());
+      std::fill(out + block_lo, out + block_hi, vec_type::Zero());
       if (thread > 0) {
         std::size_t lo, hi;
         reach(thread, team, lo, hi);
         std::fill(mine + lo, mine + hi, vec_type::Zero());
       }
       MPSFSI_OMP(barrier)
-      for (auto i = static_cast<std::int64_t>(first); i < static_cast<std::int64_t>(last); ++i) {
+      for (auto i = static_cast<std::int64_t>(block_lo); i < static_cast<std::int64_t>(block_hi); ++i) {
         const Offset first = packed_.begin(static_cast<std::size_t>(i));
         const auto m = static_cast<std::size_t>(packed_.end(static_cast<std::size_t>(i)) - first);
         const vec_type xi = pos[i];
@@ -193,7 +193,7 @@ class CorrectedTotalLagrangian {
           std::size_t lo, hi;
           reach(t, team, lo, hi);
           const vec_type* const theirs = partial + static_cast<std::size_t>(t - 1) * x.size();
-          for (std::size_t i = std::max(lo, first); i < std::min(hi, last); ++i) out[i] += theirs[i];
+          for (std::size_t i = std::max(lo, block_lo); i < std::min(hi, block_hi); ++i) out[i] += theirs[i];
         }
       }
     }
