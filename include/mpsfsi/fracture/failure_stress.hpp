@@ -53,6 +53,10 @@ class FailureStressReadout {
                                     const fit_type* fit, Loaded&& loaded, const Settings& s) {
     const std::size_t n = x.size();
     const bool at_surface = fit != nullptr;
+    if (initial_weight_.size() != bonds.num_bonds()) {
+      initial_weight_.resize(bonds.num_bonds());
+      for (std::size_t b = 0; b < initial_weight_.size(); ++b) initial_weight_[b] = bonds.weight(static_cast<Offset>(b));
+    }
     if (at_surface) {
       if (normal_.size() != n) structure_normals(bonds, reference, s.n0, kSurfaceThreshold, normal_, on_surface_);
       read_outside_.resize(n);
@@ -101,20 +105,26 @@ class FailureStressReadout {
         out[i] = in[i];
         continue;
       }
-      mat_type sum = self_weight * in[i];
-      double weight = self_weight;
+      double own = self_weight;
+      mat_type sum = mat_type::Zero();
+      double weight = 0;
       for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
         const double w = bonds.weight(b);
         const auto k = static_cast<std::size_t>(bonds.neighbor(b));
-        if (w == 0 || (along_face && !same_face(i, k))) continue;
+        if (along_face && !same_face(i, k)) continue;
+        if (w == 0) {
+          own += initial_weight_[static_cast<std::size_t>(b)];  // cut since the first read
+          continue;
+        }
         sum += w * (along_face ? in[k] : point[k]);
         weight += w;
       }
-      out[i] = sum / weight;
+      out[i] = (sum + own * in[i]) / (weight + own);
     }
   }
 
   VecArray<Dim, double> normal_;  // outward normals at the first read (zero inside)
+  std::vector<double> initial_weight_;  // w of every bond at the first read (0 if already cut)
   std::vector<std::uint8_t> on_surface_, read_outside_;
   MatArray<Dim, double> surface_stress_, averaged_, smoothed_;
 };
