@@ -43,7 +43,7 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a particle's cut bonds weigh its ow
 
   FailureStressReadout<Dim> readout;
   CHECK(read_at_i(readout, bonds) == doctest::Approx(1e6 * self / (self + all)).epsilon(1e-12));
-  // Cut all of i's bonds but the first (a neighbour at 2 l0 or sqrt(2) l0 with weight w_left).
+  // Cut all of i's bonds but the first in its row (weight w_left).
   const double w_left = bonds.weight(bonds.begin(i));
   for (Offset b = bonds.begin(i) + 1; b < bonds.end(i); ++b) bonds.cut(b);
   // Cut since the first read: their weight goes to i's own stress, the sum of weights is kept.

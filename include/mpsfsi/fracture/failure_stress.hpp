@@ -20,8 +20,9 @@ namespace mpsfsi {
 //   is gone nothing else stands for it, and a particle that has lost most of its bonds is not
 //   averaged down by the relaxed neighbours left in its piece (in the 3D bending beam one such
 //   particle pair, 0.8 of their bonds cut, held the broken halves together by a 2 l0 bond
-//   stretched 48 %: sigma_1 3.6-3.8 MPa at the particles, sigma_f 1.14 MPa, and neither failed). Bonds
-//   already cut at the first read (an imposed notch) are not material and stay out.
+//   stretched 48 %: sigma_1 3.6-3.8 MPa at the particles, sigma_f 1.14 MPa, and neither
+//   failed). Bonds already cut at the first read (an imposed notch) are not material and stay
+//   out.
 // - At the surface (given a second-order fit, i.e. failure_stress_at_surface with the default
 //   stress model): a particle on the body's outer surface (outward normal n_i from the bonds at
 //   the first read, so imposed notches count and crack faces do not) reads its fitted field at
