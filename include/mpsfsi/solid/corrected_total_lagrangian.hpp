@@ -47,9 +47,9 @@ class CorrectedTotalLagrangian {
   using fit_type = DeformationFit<Dim, Scalar>;
   static constexpr int width = fit_type::width;
 #if defined(__AVX__)
-  static constexpr int lanes = 4;  // bonds per SIMD step of the force loop: one AVX register
+  static constexpr int lanes = 4;  // particles per SIMD step of the force loop: one AVX register
 #else
-  static constexpr int lanes = 2;  // one SSE2 register (4 lanes there measured 45 % slower)
+  static constexpr int lanes = 2;  // one SSE2 register
 #endif
 
   Scalar stabilization = Scalar(0.1);  // alpha
@@ -69,32 +69,37 @@ class CorrectedTotalLagrangian {
   }
 
   // With t_ij = V P_i g_ij + 2c beta_ij delta_ij per directed bond, f_k = sum_j (t_kj - t_jk).
-  // Particle i fits A_i, adds its own t_ij and subtracts each from particle j's force: thread 0
-  // into `force`, the others into their own copies (partial_), which are added at the end, so no
-  // two threads write the same entry. Thread t takes the t-th contiguous block of particles, so
-  // its copy is written only within the bond graph's bandwidth of that block: only that stretch
-  // is zeroed and added (the whole array when the particles are not ordered in space). The bond
-  // loops run over the padded rows of
-  // detail::PackedBonds `lanes` bonds at a time, as Eigen arrays of that length (Eigen maps them
-  // onto the SIMD registers the build enables); each thread keeps the particle's du_ij in its own
-  // rows of scratch_. Nothing is allocated after the first call.
+  // The loop runs over groups of `lanes` consecutive particles, one particle per SIMD lane
+  // (detail::PackedBonds), as Eigen arrays of that length: each lane fits its particle's A_i, and
+  // the stress of all of them is evaluated at once (with about 12 bonds per particle in 2D, the
+  // per-particle work weighs as much as the bond loops). Each lane adds its own t_ij to its
+  // particle and subtracts it from particle j's force: thread 0 into `force`, the others into
+  // their own copies (partial_), which are added at the end, so no two threads write the same
+  // entry. Thread t takes the t-th contiguous block of groups, so its copy is written only within
+  // the bond graph's bandwidth of that block: only that stretch is zeroed and added (the whole
+  // array when the particles are not ordered in space). Each thread keeps the group's du_ij in its
+  // own rows of scratch_. Nothing is allocated after the first call.
   void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>&, VecArray<Dim, Scalar>& force) {
     using lane_type = Eigen::Array<Scalar, lanes, 1>;
     using lane_map = Eigen::Map<const lane_type>;
-    const auto n = static_cast<std::int64_t>(x.size());
+    using packed_type = detail::PackedBonds<Dim, Scalar, lanes>;
+    const std::size_t count = x.size();
     const Scalar v = context_.volume;
     const Scalar c2 = 2 * stabilization_constant();
     const Scalar inv_l0 = 1 / context_.l0;
-    force.resize(x.size());
+    const Scalar lambda = context_.lame.lambda;
+    const Scalar two_mu = 2 * context_.lame.mu;
+    force.resize(count);
+    if (count == 0) return;
     const std::size_t row = packed_.longest_row();
     const int threads = parallel::max_threads();
     // Each thread's rows start on a cache line of their own: with a 16-byte aligned block, two
     // threads' du rows shared a line, and that false sharing made the 2-thread step slower than
     // the 1-thread one (1.1 ms against 0.9 ms, 2D benchmark at 16,160 particles).
     constexpr std::size_t line = 64 / sizeof(Scalar);
-    const std::size_t stride = (Dim * row + line - 1) / line * line;
+    const std::size_t stride = (Dim * lanes * row + line - 1) / line * line;
     scratch_.resize(static_cast<std::size_t>(threads) * stride + line);
-    partial_.resize(static_cast<std::size_t>(threads - 1) * x.size());
+    partial_.resize(static_cast<std::size_t>(threads - 1) * count);
     // Raw pointers: stores through force would otherwise make the compiler reload every
     // container's data pointer in the inner loops.
     Scalar* const scratch = reinterpret_cast<Scalar*>(
@@ -102,14 +107,16 @@ class CorrectedTotalLagrangian {
     vec_type* const partial = partial_.data();
     vec_type* const out = force.data();
     const vec_type* const pos = x.data();
-    const Index* const nbp = packed_.neighbors();
-    const Scalar* const betap = packed_.beta();
+    const std::size_t groups = packed_.num_groups();
     const std::size_t band = packed_.bandwidth();
-    const auto count = static_cast<std::size_t>(n);
-    // The particles thread t's bond loop writes to: its block widened by the bandwidth.
+    // Thread t's particles (those of its block of groups), and the particles its bond loop writes
+    // to: that block widened by the bandwidth.
+    auto block = [&](int t, int team, std::size_t& lo, std::size_t& hi) {
+      lo = std::min(count, detail::block_begin(groups, t, team) * lanes);
+      hi = std::min(count, detail::block_begin(groups, t + 1, team) * lanes);
+    };
     auto reach = [&](int t, int team, std::size_t& lo, std::size_t& hi) {
-      lo = detail::block_begin(count, t, team);
-      hi = detail::block_begin(count, t + 1, team);
+      block(t, team, lo, hi);
       lo = lo > band ? lo - band : 0;
       hi = std::min(count, hi + band);
     };
@@ -117,14 +124,9 @@ class CorrectedTotalLagrangian {
     {
       const int thread = parallel::thread_id();
       const int team = parallel::team_size();
-      const std::size_t block_lo = detail::block_begin(count, thread, team);
-      const std::size_t block_hi = detail::block_begin(count, thread + 1, team);
-      vec_type* const mine = thread == 0 ? out : partial + static_cast<std::size_t>(thread - 1) * x.size();
-      // Per-thread copies of the row pointers: shared ones would be reloaded after every store.
-      const Scalar* r0[Dim];
-      for (int a = 0; a < Dim; ++a) r0[a] = packed_.reference_vector(a);
-      const Scalar* g[width];
-      for (int c = 0; c < width; ++c) g[c] = packed_.coefficient(c);
+      std::size_t block_lo, block_hi;
+      block(thread, team, block_lo, block_hi);
+      vec_type* const mine = thread == 0 ? out : partial + static_cast<std::size_t>(thread - 1) * count;
       Scalar* const du = scratch + static_cast<std::size_t>(thread) * stride;
       // Every thread zeroes its block of `force` (thread 0 writes all of it below) and the
       // stretch of its own copy that it writes.
@@ -135,64 +137,94 @@ class CorrectedTotalLagrangian {
         std::fill(mine + lo, mine + hi, vec_type::Zero());
       }
       MPSFSI_OMP(barrier)
-      for (auto i = static_cast<std::int64_t>(block_lo); i < static_cast<std::int64_t>(block_hi); ++i) {
-        const Offset first = packed_.begin(static_cast<std::size_t>(i));
-        const auto m = static_cast<std::size_t>(packed_.end(static_cast<std::size_t>(i)) - first);
-        const vec_type xi = pos[i];
+      const std::size_t group_hi = detail::block_begin(groups, thread + 1, team);
+      for (std::size_t group = detail::block_begin(groups, thread, team); group < group_hi; ++group) {
+        const std::size_t i0 = group * lanes;
+        const std::size_t present = std::min<std::size_t>(lanes, count - i0);  // lanes with a particle
+        const Offset first = packed_.begin(group);
+        const auto m = static_cast<std::size_t>(packed_.end(group) - first);
+        lane_type xi[Dim];
+        for (std::size_t l = 0; l < lanes; ++l) {
+          const vec_type& p = pos[i0 + std::min(l, present - 1)];
+          for (int a = 0; a < Dim; ++a) xi[a][l] = p[a];
+        }
         // du_ij = r_ij - r0_ij and U = A_i - [I 0] = sum_j du_ij g_ij^T.
-        lane_type acc[Dim][width];
+        lane_type u[Dim][width];
         for (int a = 0; a < Dim; ++a)
-          for (int c = 0; c < width; ++c) acc[a][c].setZero();
-        for (std::size_t k = 0; k < m; k += lanes) {
+          for (int c = 0; c < width; ++c) u[a][c].setZero();
+        for (std::size_t k = 0; k < m; ++k) {
           const Offset s = first + static_cast<Offset>(k);
+          const Index* const nb = packed_.neighbors(s);
+          const Scalar* const slot = packed_.block(s);
           lane_type d[Dim];
-          for (int l = 0; l < lanes; ++l) {
-            const vec_type& xj = pos[nbp[s + l]];
-            for (int a = 0; a < Dim; ++a) d[a][l] = xj[a] - xi[a];
+          for (std::size_t l = 0; l < lanes; ++l) {
+            const vec_type& xj = pos[nb[l]];
+            for (int a = 0; a < Dim; ++a) d[a][l] = xj[a];
           }
           for (int a = 0; a < Dim; ++a) {
-            d[a] -= lane_map(r0[a] + s);
-            Eigen::Map<lane_type>(du + a * row + k) = d[a];
-            for (int c = 0; c < width; ++c) acc[a][c] += d[a] * lane_map(g[c] + s);
+            d[a] -= xi[a];
+            d[a] -= lane_map(slot + packed_type::r0_at(a));
+            Eigen::Map<lane_type>(du + (k * Dim + static_cast<std::size_t>(a)) * lanes) = d[a];
+            for (int c = 0; c < width; ++c) u[a][c] += d[a] * lane_map(slot + packed_type::coefficient_at(c));
           }
         }
-        typename fit_type::affine_type u;
+        // Per lane: F = I + U[:, :Dim], E = (F^T F - I)/2, S = lambda tr(E) I + 2 mu E, and
+        // V P = V F S (detail::green_strain, svk_stress, written out lane-wise).
+        lane_type e[Dim][Dim];
         for (int a = 0; a < Dim; ++a)
-          for (int c = 0; c < width; ++c) u(a, c) = acc[a][c].sum();
-        const mat_type f = mat_type::Identity() + u.template leftCols<Dim>();
-        const mat_type vp = v * f * detail::svk_stress(detail::green_strain(f), context_.lame);
+          for (int b = a; b < Dim; ++b) {
+            e[a][b] = Scalar(0.5) * (u[a][b] + u[b][a]);
+            for (int c = 0; c < Dim; ++c) e[a][b] += Scalar(0.5) * u[c][a] * u[c][b];
+            e[b][a] = e[a][b];
+          }
+        lane_type trace = e[0][0];
+        for (int a = 1; a < Dim; ++a) trace += e[a][a];
+        lane_type stress[Dim][Dim];
+        for (int a = 0; a < Dim; ++a)
+          for (int b = 0; b < Dim; ++b) stress[a][b] = two_mu * e[a][b];
+        for (int a = 0; a < Dim; ++a) stress[a][a] += lambda * trace;
+        lane_type vp[Dim][Dim];
+        for (int a = 0; a < Dim; ++a)
+          for (int b = 0; b < Dim; ++b) {
+            vp[a][b] = stress[a][b];
+            for (int c = 0; c < Dim; ++c) vp[a][b] += u[a][c] * stress[c][b];
+            vp[a][b] *= v;
+          }
         // t_ij = V P_i g_ij + 2c beta_ij (du_ij - U phi(r0_ij)): + to i, - to j.
         lane_type own[Dim];
         for (int a = 0; a < Dim; ++a) own[a].setZero();
-        for (std::size_t k = 0; k < m; k += lanes) {
+        for (std::size_t k = 0; k < m; ++k) {
           const Offset s = first + static_cast<Offset>(k);
+          const Index* const nb = packed_.neighbors(s);
+          const Scalar* const slot = packed_.block(s);
           // phi(r0) = [r0, q(r0)/l0] as DeformationFit::basis, the quadratic part rebuilt here.
           lane_type phi[width];
-          for (int a = 0; a < Dim; ++a) phi[a] = lane_map(r0[a] + s);
+          for (int a = 0; a < Dim; ++a) phi[a] = lane_map(slot + packed_type::r0_at(a));
           for (int a = 0, c = Dim; a < Dim; ++a)
             for (int b = a; b < Dim; ++b, ++c) phi[c] = (a == b ? Scalar(0.5) * inv_l0 : inv_l0) * phi[a] * phi[b];
-          const lane_type cb = c2 * lane_map(betap + s);
+          const lane_type cb = c2 * lane_map(slot + packed_type::beta_at);
           lane_type t[Dim];
           for (int a = 0; a < Dim; ++a) {
-            lane_type delta = lane_map(du + a * row + k);
-            for (int c = 0; c < width; ++c) delta -= u(a, c) * phi[c];
+            lane_type delta = lane_map(du + (k * Dim + static_cast<std::size_t>(a)) * lanes);
+            for (int c = 0; c < width; ++c) delta -= u[a][c] * phi[c];
             t[a] = cb * delta;
-            for (int c = 0; c < Dim; ++c) t[a] += vp(a, c) * lane_map(g[c] + s);
+            for (int c = 0; c < Dim; ++c) t[a] += vp[a][c] * lane_map(slot + packed_type::coefficient_at(c));
             own[a] += t[a];
           }
-          for (int l = 0; l < lanes; ++l) {
-            vec_type& fj = mine[nbp[s + l]];
+          for (std::size_t l = 0; l < lanes; ++l) {
+            vec_type& fj = mine[nb[l]];
             for (int a = 0; a < Dim; ++a) fj[a] -= t[a][l];
           }
         }
-        for (int a = 0; a < Dim; ++a) mine[i][a] += own[a].sum();
+        for (std::size_t l = 0; l < present; ++l)
+          for (int a = 0; a < Dim; ++a) mine[i0 + l][a] += own[a][l];
       }
       if (team > 1) {
         MPSFSI_OMP(barrier)
         for (int t = 1; t < team; ++t) {
           std::size_t lo, hi;
           reach(t, team, lo, hi);
-          const vec_type* const theirs = partial + static_cast<std::size_t>(t - 1) * x.size();
+          const vec_type* const theirs = partial + static_cast<std::size_t>(t - 1) * count;
           for (std::size_t i = std::max(lo, block_lo); i < std::min(hi, block_hi); ++i) out[i] += theirs[i];
         }
       }
