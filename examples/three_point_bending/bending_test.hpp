@@ -384,6 +384,15 @@ Result run(const IceBeamCase& c, const Options& o) {
                       {"t", "indenter_m", "deflection_m", "bottom_deflection_m", "load_N", "sxx_top_Pa", "sxx_bottom_Pa"});
     for (const auto& h : r.history)
       history.row({h.t, h.indenter, h.deflection, h.bottom_deflection, h.load, h.sxx_top, h.sxx_bottom});
+    // Every failure in order: when, which particle (reference position), its sigma_1 and the
+    // crack normal.
+    CsvWriter failures(o.out + "/case" + c.name + "_failures.csv",
+                       {"t", "particle", "x0", "y0", "z0", "sigma1_Pa", "nx", "ny", "nz"});
+    for (const auto& event : s.failure_log()) {
+      const vec x = s.reference_positions()[event.particle];
+      failures.row({event.time, double(event.particle), x[0], x[1], Dim == 3 ? x[Dim - 1] : 0.0, event.sigma1,
+                    event.normal[0], event.normal[1], Dim == 3 ? event.normal[Dim - 1] : 0.0});
+    }
     CsvWriter final_state(o.out + "/case" + c.name + "_final.csv", {"x", "y", "damage", "sxx_Pa"});
     const auto& out = s.output();
     const auto& sigma = s.stresses();
