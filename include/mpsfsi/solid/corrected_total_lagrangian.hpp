@@ -107,6 +107,9 @@ class CorrectedTotalLagrangian {
     vec_type* const partial = partial_.data();
     vec_type* const out = force.data();
     const vec_type* const pos = x.data();
+    const Index* const neighbors = packed_.neighbors(0);
+    const Scalar* const blocks = packed_.block(0);
+    constexpr std::size_t slot_size = packed_type::rows * lanes;
     const std::size_t groups = packed_.num_groups();
     const std::size_t band = packed_.bandwidth();
     // Thread t's particles (those of its block of groups), and the particles its bond loop writes
@@ -154,8 +157,8 @@ class CorrectedTotalLagrangian {
           for (int c = 0; c < width; ++c) u[a][c].setZero();
         for (std::size_t k = 0; k < m; ++k) {
           const Offset s = first + static_cast<Offset>(k);
-          const Index* const nb = packed_.neighbors(s);
-          const Scalar* const slot = packed_.block(s);
+          const Index* const nb = neighbors + static_cast<std::size_t>(s) * lanes;
+          const Scalar* const slot = blocks + static_cast<std::size_t>(s) * slot_size;
           lane_type d[Dim];
           for (std::size_t l = 0; l < lanes; ++l) {
             const vec_type& xj = pos[nb[l]];
@@ -195,8 +198,8 @@ class CorrectedTotalLagrangian {
         for (int a = 0; a < Dim; ++a) own[a].setZero();
         for (std::size_t k = 0; k < m; ++k) {
           const Offset s = first + static_cast<Offset>(k);
-          const Index* const nb = packed_.neighbors(s);
-          const Scalar* const slot = packed_.block(s);
+          const Index* const nb = neighbors + static_cast<std::size_t>(s) * lanes;
+          const Scalar* const slot = blocks + static_cast<std::size_t>(s) * slot_size;
           // phi(r0) = [r0, q(r0)/l0] as DeformationFit::basis, the quadratic part rebuilt here.
           lane_type phi[width];
           for (int a = 0; a < Dim; ++a) phi[a] = lane_map(slot + packed_type::r0_at(a));

@@ -147,7 +147,7 @@ class ElasticSolver {
     constraint_.assign(n, Constraint::free);
     prescribed_velocity_.assign(n, vec_type::Zero());
     external_.assign(n, vec_type::Zero());
-    compute_acceleration(set_.positions(), set_.velocities(), force_, acceleration_);
+    compute_forces(set_.positions(), set_.velocities(), force_);
   }
 
   // --- Boundary conditions (may be changed between steps) ---
@@ -215,13 +215,15 @@ class ElasticSolver {
     }
     model_.kick(0.5 * dt);
     model_.drift(dt);
-    compute_acceleration(x_next_, v_next_, force_next_, acceleration_next_);
+    compute_forces(x_next_, v_next_, force_next_);
     const double limit = p_.blowup_speed_factor * p_.p_wave_speed();
+    const double inv_m = 1 / mass_;
     long long bad = -1;
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
-      v_next_[i] = constrained(i, decay * (v_next_[i] + 0.5 * dt * acceleration_next_[i]));
+      const vec_type a = inv_m * (force_next_[i] + external_[i]) + p_.gravity;  // at the new positions
+      v_next_[i] = constrained(i, decay * (v_next_[i] + 0.5 * dt * a));
       if (!(v_next_[i].norm() <= limit) || !x_next_[i].allFinite()) {
         MPSFSI_OMP(atomic write)
         bad = static_cast<long long>(i);
@@ -240,13 +242,12 @@ class ElasticSolver {
     set_.positions().swap(x_next_);
     set_.velocities().swap(v_next_);
     force_.swap(force_next_);
-    acceleration_.swap(acceleration_next_);
     time_ += dt;
     last_dt_ = dt;
     ++step_count_;
     stresses_current_ = false;
     if constexpr (failure_type::enabled) {
-      if (apply_failure()) compute_acceleration(set_.positions(), set_.velocities(), force_, acceleration_);
+      if (apply_failure()) compute_forces(set_.positions(), set_.velocities(), force_);
     }
   }
 
@@ -262,7 +263,7 @@ class ElasticSolver {
                                                    p_.crack_half_width(), p_.re(), touched_, scratch_);
     if (cut > 0) {
       bonds_changed();
-      compute_acceleration(set_.positions(), set_.velocities(), force_, acceleration_);
+      compute_forces(set_.positions(), set_.velocities(), force_);
     }
     return cut;
   }
@@ -389,20 +390,13 @@ class ElasticSolver {
     }
   }
 
-  // m a = f_internal + f_contact + f_viscous + f_external + m g. The bond viscosity uses the
-  // velocities it is given (the half-step ones inside step()).
-  void compute_acceleration(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force,
-                            VecArray<Dim, double>& a) {
+  // The forces on the particles at positions x, all but the external one and gravity:
+  // f_internal + f_contact + f_viscous (m a adds f_external + m g, in step()). The bond viscosity
+  // uses the velocities it is given (the half-step ones inside step()).
+  void compute_forces(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force) {
     model_.internal_forces(x, bonds_, force);
     contact_.add_forces(x, v, bonds_, force);
     if (p_.bond_viscosity > 0) add_bond_viscosity(x, v, force);
-    a.resize(x.size());
-    const double inv_m = 1 / mass_;
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      a[i] = inv_m * (force[i] + external_[i]) + p_.gravity;
-    }
   }
 
   void add_bond_viscosity(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force) const {
@@ -515,8 +509,8 @@ class ElasticSolver {
   FieldHandle<double> damage_, principal_;
   std::vector<Constraint> constraint_;
   VecArray<Dim, double> prescribed_velocity_;  // the velocity, or the unit normal of a support
-  VecArray<Dim, double> external_, force_, acceleration_;
-  VecArray<Dim, double> x_next_, v_next_, force_next_, acceleration_next_;
+  VecArray<Dim, double> external_, force_;
+  VecArray<Dim, double> x_next_, v_next_, force_next_;
   double time_ = 0, last_dt_ = 0;
   long long step_count_ = 0;
   bool stresses_current_ = false;
