@@ -188,6 +188,35 @@ TEST_CASE_TEMPLATE("solid.corrected_total_lagrangian: force loop equals the bond
   parallel::set_num_threads(saved);
 }
 
+// Fewer groups of particles than threads: a row of 3 particles is one group, so on 3 and 8
+// threads most threads have no particles, and every force copy spans the whole (short) array.
+// The forces must be those of one thread to round-off, and sum to zero (momentum).
+TEST_CASE("solid.corrected_total_lagrangian: force loop with fewer particle groups than threads") {
+  const double l0 = 0.01;
+  ModelBlock<2, CorrectedTotalLagrangian<2>> block(l0, 3, 1, kLame);
+  REQUIRE(block.set.size() == 3);
+  VecArray<2> x = block.set.positions();
+  x[0] += Vec<2>(-0.02 * l0, 0.01 * l0);
+  x[2] += Vec<2>(0.03 * l0, -0.01 * l0);
+  const int saved = parallel::max_threads();
+  parallel::set_num_threads(1);
+  VecArray<2> one;
+  block.model.internal_forces(x, block.bonds, one);
+  double scale = 0;
+  for (const auto& f : one) scale = std::max(scale, f.norm());
+  CHECK(scale > 0);
+  CHECK((one[0] + one[1] + one[2]).norm() < 1e-12 * scale);
+  for (const int threads : {3, 8}) {
+    CAPTURE(threads);
+    parallel::set_num_threads(threads);
+    VecArray<2> f;
+    block.model.internal_forces(x, block.bonds, f);
+    REQUIRE(f.size() == 3);
+    for (std::size_t i = 0; i < 3; ++i) CHECK((f[i] - one[i]).norm() < 1e-12 * scale);
+  }
+  parallel::set_num_threads(saved);
+}
+
 TEST_CASE_TEMPLATE("solid.stress_models: patch test, uniform uniaxial stress in plane stress", Model,
                    CorrectedTotalLagrangian<2>, HwangModel<2>) {
   // Plane stress lambda* = 2 lambda mu / (lambda + 2 mu); E and nu from the 3D constants.

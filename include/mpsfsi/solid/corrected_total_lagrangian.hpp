@@ -269,7 +269,7 @@ class CorrectedTotalLagrangian {
   fit_type fit_;
   detail::PackedBonds<Dim, Scalar, lanes> packed_;
   VecArray<Dim, Scalar> partial_;  // the forces threads 1.. add up, one copy per thread
-  std::vector<Scalar> scratch_;  // du_ij of the particle in hand, Dim rows per thread
+  std::vector<Scalar> scratch_;  // du_ij of the group in hand (Dim x lanes per slot), per thread
 };
 
 }  // namespace mpsfsi
