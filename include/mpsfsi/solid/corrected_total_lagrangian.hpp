@@ -112,11 +112,16 @@ class CorrectedTotalLagrangian {
     constexpr std::size_t slot_size = packed_type::rows * lanes;
     const std::size_t groups = packed_.num_groups();
     const std::size_t band = packed_.bandwidth();
-    // Thread t's particles (those of its block of groups), and the particles its bond loop writes
-    // to: that block widened by the bandwidth.
+    // Thread t's block of groups, its particles, and the particles its bond loop writes to: that
+    // block widened by the bandwidth.
+    auto group_block = [&](int t, int team, std::size_t& lo, std::size_t& hi) {
+      lo = detail::block_begin(groups, t, team);
+      hi = detail::block_begin(groups, t + 1, team);
+    };
     auto block = [&](int t, int team, std::size_t& lo, std::size_t& hi) {
-      lo = std::min(count, detail::block_begin(groups, t, team) * lanes);
-      hi = std::min(count, detail::block_begin(groups, t + 1, team) * lanes);
+      group_block(t, team, lo, hi);
+      lo = std::min(count, lo * lanes);
+      hi = std::min(count, hi * lanes);
     };
     auto reach = [&](int t, int team, std::size_t& lo, std::size_t& hi) {
       block(t, team, lo, hi);
@@ -140,8 +145,9 @@ class CorrectedTotalLagrangian {
         std::fill(mine + lo, mine + hi, vec_type::Zero());
       }
       MPSFSI_OMP(barrier)
-      const std::size_t group_hi = detail::block_begin(groups, thread + 1, team);
-      for (std::size_t group = detail::block_begin(groups, thread, team); group < group_hi; ++group) {
+      std::size_t group_lo, group_hi;
+      group_block(thread, team, group_lo, group_hi);
+      for (std::size_t group = group_lo; group < group_hi; ++group) {
         const std::size_t i0 = group * lanes;
         const std::size_t present = std::min<std::size_t>(lanes, count - i0);  // lanes with a particle
         const Offset first = packed_.begin(group);

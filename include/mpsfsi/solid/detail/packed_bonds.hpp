@@ -54,24 +54,19 @@ class PackedBonds {
     const auto slots = static_cast<std::size_t>(first_[groups]);
     data_.assign(slots * rows * lanes, Scalar(0));
     neighbor_.resize(slots * lanes);
-    MPSFSI_OMP(parallel for schedule(static))
+    std::size_t band = 0;
+    MPSFSI_OMP(parallel for schedule(static) reduction(max : band))
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(groups * lanes); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
-      if (i < particles_) {
-        update(fit, bonds, i);
-      } else {  // a lane past the last particle
-        for (Offset s = first_[i / lanes]; s < first_[i / lanes + 1]; ++s)
-          neighbor_[static_cast<std::size_t>(s) * lanes + i % lanes] = static_cast<Index>(particles_ - 1);
+      const std::size_t owner = std::min(i, particles_ - 1);  // a lane past the last particle: the last
+      if (i < particles_) update(fit, bonds, i);
+      for (Offset s = first_[i / lanes]; s < first_[i / lanes + 1]; ++s) {
+        Index& j = neighbor_[static_cast<std::size_t>(s) * lanes + i % lanes];
+        if (i >= particles_) j = static_cast<Index>(owner);
+        const auto k = static_cast<std::size_t>(j);
+        band = std::max(band, k > owner ? k - owner : owner - k);
       }
     }
-    std::size_t band = 0;
-    for (std::size_t g = 0; g < groups; ++g)
-      for (Offset s = first_[g]; s < first_[g + 1]; ++s)
-        for (std::size_t l = 0; l < lanes; ++l) {
-          const std::size_t i = std::min(particles_ - 1, g * lanes + l);
-          const auto j = static_cast<std::size_t>(neighbor_[static_cast<std::size_t>(s) * lanes + l]);
-          band = std::max(band, j > i ? j - i : i - j);
-        }
     bandwidth_ = band;
   }
 
