@@ -17,6 +17,7 @@
 #include <mpsfsi/io/csv_writer.hpp>
 #include <mpsfsi/io/progress.hpp>
 #include <mpsfsi/io/pvd_writer.hpp>
+#include <mpsfsi/fracture/fragments.hpp>
 #include <mpsfsi/io/vtu_writer.hpp>
 #include <mpsfsi/scenes/solid_block.hpp>
 #include <mpsfsi/solid/elastic_solver.hpp>
@@ -81,6 +82,7 @@ struct Result {
   std::size_t overstretched_bonds = 0;
   bool broken_but_overstretched = false;
   double crack_offset = 0;        // largest |x| of a failed particle (reference), m
+  double fracture_surface_offset = -1;  // broken beam: largest |x| of its fracture surface (reference), m
   double crack_start_x = 0, crack_start_y = 0;  // the first failed particle (reference), m
   double crack_top = 0;           // highest failed particle (reference), m
   double wall_seconds = 0;
@@ -97,33 +99,11 @@ double stretch(const Solver& s, std::size_t i, mpsfsi::Offset b) {
   return (s.particles().positions()[j] - s.particles().positions()[i]).norm() / s.bonds().r0(b).norm() - 1;
 }
 
-// Number of beam particles in each connected piece of the intact-bond graph; with
-// max_stretch > 0, intact bonds stretched beyond it are left out (a diagnostic: ice breaks at a
-// strain of about 0.4 %, so an intact bond stretched by several per cent spans an opening).
-template <int Dim, class Solver>
-std::vector<std::size_t> pieces(const Solver& s, std::size_t beam_count, double max_stretch = 0) {
-  std::vector<int> label(beam_count, -1);
-  std::vector<std::size_t> sizes, stack;
-  for (std::size_t start = 0; start < beam_count; ++start) {
-    if (label[start] >= 0) continue;
-    const int id = static_cast<int>(sizes.size());
-    sizes.push_back(0);
-    stack.assign(1, start);
-    label[start] = id;
-    while (!stack.empty()) {
-      const std::size_t i = stack.back();
-      stack.pop_back();
-      ++sizes.back();
-      for (mpsfsi::Offset b = s.bonds().begin(i); b < s.bonds().end(i); ++b) {
-        const auto j = static_cast<std::size_t>(s.bonds().neighbor(b));
-        if (!s.bonds().intact(b) || j >= beam_count || label[j] >= 0) continue;
-        if (max_stretch > 0 && stretch(s, i, b) > max_stretch) continue;
-        label[j] = id;
-        stack.push_back(j);
-      }
-    }
-  }
-  return sizes;
+// Pieces of the beam with more than a tenth of its particles (loose particles and chips at the
+// crack faces are left out): a broken beam has two. The beam is particles [0, beam_count); the
+// rollers are separate bodies with no bonds to it, so they are fragments of their own.
+inline std::size_t large_pieces(const mpsfsi::Fragments& f, std::size_t beam_count) {
+  return f.count_larger_than(beam_count / 10);
 }
 
 }  // namespace detail
@@ -322,9 +302,7 @@ Result run(const IceBeamCase& c, const Options& o) {
     if (s.first_failure_time() >= 0 && load < 0.02 * r.peak_load) {
       if (after_peak_low < 0) after_peak_low = s.time();
       if (s.time() - after_peak_low > 5e-4 && s.step_count() % 50 == 0) {
-        std::size_t big = 0;
-        for (const auto n : detail::pieces<Dim>(s, beam_count)) big += n > beam_count / 10 ? 1 : 0;
-        if (big >= 2) break;
+        if (detail::large_pieces(find_fragments(s.bonds()), beam_count) >= 2) break;
       }
     } else {
       after_peak_low = -1;
@@ -339,10 +317,8 @@ Result run(const IceBeamCase& c, const Options& o) {
   double last_load = 0;
   for (const auto i : indenter) last_load += s.internal_force(i)[1];
   r.final_load_fraction = last_load * scale / r.peak_load;
-  const auto sizes = detail::pieces<Dim>(s, beam_count);
-  std::size_t big = 0;
-  for (const auto n : sizes) big += n > beam_count / 10 ? 1 : 0;
-  r.broken = big >= 2;
+  const Fragments fragments = find_fragments(s.bonds());
+  r.broken = detail::large_pieces(fragments, beam_count) >= 2;
   constexpr double overstretched = 0.05;
   if (!r.broken) {
     std::unique_ptr<CsvWriter> open_bonds;
@@ -364,9 +340,8 @@ Result run(const IceBeamCase& c, const Options& o) {
                            Dim == 3 ? xj[Dim - 1] : 0.0, e, double(s.bonds().intact_count(i)),
                            double(s.bonds().intact_count(j))});
       }
-    std::size_t without = 0;
-    for (const auto n : detail::pieces<Dim>(s, beam_count, overstretched)) without += n > beam_count / 10 ? 1 : 0;
-    r.broken_but_overstretched = without >= 2;
+    const auto keep = [&](std::size_t i, Offset b) { return detail::stretch(s, i, b) <= overstretched; };
+    r.broken_but_overstretched = detail::large_pieces(find_fragments(s.bonds(), keep), beam_count) >= 2;
   }
   // The crack path: where particles failed, in the reference configuration.
   if (!s.failure_log().empty()) {
@@ -378,6 +353,21 @@ Result run(const IceBeamCase& c, const Options& o) {
       r.crack_offset = std::max(r.crack_offset, std::abs(x[0]));
       r.crack_top = std::max(r.crack_top, x[1]);
     }
+  }
+  // The fracture surface of a broken beam: it passes between every two lattice neighbours (one
+  // spacing apart) that ended in different large pieces; its distance from the centre line is
+  // that of the midpoint between them. Failed particles off this surface (a front that wandered
+  // and came back, bonds cut on one side only) count in crack_offset but not here.
+  if (r.broken) {
+    const auto is_large = [&](std::size_t i) { return fragments.sizes[static_cast<std::size_t>(fragments.label[i])] > beam_count / 10; };
+    for (std::size_t i = 0; i < beam_count; ++i)
+      for (Offset b = s.bonds().begin(i); b < s.bonds().end(i); ++b) {
+        const auto j = static_cast<std::size_t>(s.bonds().neighbor(b));
+        if (j <= i || j >= beam_count || s.bonds().r0(b).norm() > 1.01 * l0) continue;
+        if (fragments.label[i] == fragments.label[j] || !is_large(i) || !is_large(j)) continue;
+        const double mid = 0.5 * (s.reference_positions()[i][0] + s.reference_positions()[j][0]);
+        r.fracture_surface_offset = std::max(r.fracture_surface_offset, std::abs(mid));
+      }
   }
   if (!o.out.empty()) {
     CsvWriter history(o.out + "/case" + c.name + "_history.csv",
@@ -393,11 +383,15 @@ Result run(const IceBeamCase& c, const Options& o) {
       failures.row({event.time, double(event.particle), x[0], x[1], Dim == 3 ? x[Dim - 1] : 0.0, event.sigma1,
                     event.normal[0], event.normal[1], Dim == 3 ? event.normal[Dim - 1] : 0.0});
     }
-    CsvWriter final_state(o.out + "/case" + c.name + "_final.csv", {"x", "y", "damage", "sxx_Pa"});
+    CsvWriter final_state(o.out + "/case" + c.name + "_final.csv",
+                          {"x", "y", "z", "x0", "y0", "z0", "damage", "sxx_Pa", "fragment"});
     const auto& out = s.output();
     const auto& sigma = s.stresses();
-    for (std::size_t i = 0; i < beam_count; ++i)
-      final_state.row({out.positions()[i][0], out.positions()[i][1], s.bonds().damage(i), sigma[i](0, 0)});
+    for (std::size_t i = 0; i < beam_count; ++i) {
+      const vec x = out.positions()[i], x0 = s.reference_positions()[i];
+      final_state.row({x[0], x[1], Dim == 3 ? x[Dim - 1] : 0.0, x0[0], x0[1], Dim == 3 ? x0[Dim - 1] : 0.0,
+                       s.bonds().damage(i), sigma[i](0, 0), double(fragments.label[i])});
+    }
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return r;

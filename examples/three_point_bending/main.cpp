@@ -73,15 +73,16 @@ int main(int argc, char** argv) try {
   std::printf("Three-point bending of ice beams (Table 1), %dD %s, l0 = %g m, indenter %g m/s, span 0.18 m\n", o.dim,
               o.dim == 3 ? "" : (o.run.plane_model == mpsfsi::PlaneModel::plane_stress ? "plane stress" : "plane strain"),
               o.run.l0, o.run.speed);
-  std::printf("%4s %7s %7s %8s %8s | %9s %10s %9s %9s %8s | %6s %5s %6s\n", "case", "E MPa", "sf MPa", "Pexp N",
-              "ddexp mm", "Psim N", "dd@P mm", "eps_sim", "eps_exp", "error", "broken", "crack", "wall s");
+  std::printf("%4s %7s %7s %8s %8s | %9s %10s %9s %9s %8s | %6s %5s %7s %6s\n", "case", "E MPa", "sf MPa", "Pexp N",
+              "ddexp mm", "Psim N", "dd@P mm", "eps_sim", "eps_exp", "error", "broken", "crack", "surface", "wall s");
   std::unique_ptr<mpsfsi::CsvWriter> summary;
   if (!o.run.out.empty()) {
     std::filesystem::create_directories(o.run.out);
     summary = std::make_unique<mpsfsi::CsvWriter>(
         o.run.out + "/summary.csv",
         std::vector<std::string>{"case", "E_Pa", "sigma_f_Pa", "P_exp_N", "dd_exp_m", "P_sim_N", "dd_sim_m",
-                                 "bottom_dd_sim_m", "indenter_at_peak_m", "eps_sim", "eps_exp", "error", "broken", "crack_offset_m", "wall_s"});
+                                 "bottom_dd_sim_m", "indenter_at_peak_m", "eps_sim", "eps_exp", "error", "broken", "crack_offset_m",
+                                 "fracture_surface_offset_m", "wall_s"});
   }
   double total = 0, worst = 0;
   for (const auto& c : bending::table1()) {
@@ -89,17 +90,19 @@ int main(int argc, char** argv) try {
     const auto r = o.dim == 2 ? bending::run<2>(c, o.run) : bending::run<3>(c, o.run);
     total += r.wall_seconds;
     worst = std::max(worst, std::abs(r.error()));
-    std::printf("%4s %7.2f %7.3f %8.1f %8.3f | %9.1f %10.4f %9.5f %9.5f %+7.2f%% | %6s %3.1fl0 %6.1f\n", c.name.c_str(),
+    char surface[16] = "-";
+    if (r.broken) std::snprintf(surface, sizeof surface, "%.1fl0", r.fracture_surface_offset / r.l0);
+    std::printf("%4s %7.2f %7.3f %8.1f %8.3f | %9.1f %10.4f %9.5f %9.5f %+7.2f%% | %6s %3.1fl0 %7s %6.1f\n", c.name.c_str(),
                 c.youngs_modulus() / 1e6, c.tensile_strength() / 1e6, c.peak_load, 1e3 * c.deflection, r.peak_load,
                 1e3 * r.deflection_at_peak, r.flexural_strain, c.flexural_strain(), 100 * r.error(), r.broken ? "yes" : "NO",
-                r.crack_offset / r.l0, r.wall_seconds);
+                r.crack_offset / r.l0, surface, r.wall_seconds);
     if (!r.broken)
       std::printf("     not in two pieces: %zu intact bonds stretched over 5 %%; without them the beam %s\n",
                   r.overstretched_bonds, r.broken_but_overstretched ? "is in two pieces" : "is still one piece");
     if (summary)
       summary->row({std::stod(c.name), c.youngs_modulus(), c.tensile_strength(), c.peak_load, c.deflection, r.peak_load,
                     r.deflection_at_peak, r.bottom_deflection_at_peak, r.indenter_at_peak, r.flexural_strain, c.flexural_strain(), r.error(),
-                    r.broken ? 1.0 : 0.0, r.crack_offset, r.wall_seconds});
+                    r.broken ? 1.0 : 0.0, r.crack_offset, r.fracture_surface_offset, r.wall_seconds});
   }
   std::printf("largest |error| %.2f %%, total wall time %.1f s on %d threads\n", 100 * worst, total,
               mpsfsi::parallel::max_threads());

@@ -18,6 +18,7 @@
 #include "mpsfsi/fracture/crack_plane.hpp"
 #include "mpsfsi/fracture/failure_criteria.hpp"
 #include "mpsfsi/fracture/failure_stress.hpp"
+#include "mpsfsi/fracture/fragments.hpp"
 #include "mpsfsi/kernels/lattice_constants.hpp"
 #include "mpsfsi/kernels/weight.hpp"
 #include "mpsfsi/solid/bonds.hpp"
@@ -132,6 +133,7 @@ class ElasticSolver {
     stress_field_ = set_.template add_field<mat_type>("stress");
     damage_ = set_.template add_field<double>("damage");
     principal_ = set_.template add_field<double>("max_principal_stress");
+    fragment_ = set_.template add_field<std::int32_t>("fragment");
     bonds_.template build<Weight>(reference_, body, p_.re());
     const auto lattice = ideal_lattice_constants<Dim, Weight>(p_.l0, p_.re());
     context_.lame = p_.lame();
@@ -308,8 +310,10 @@ class ElasticSolver {
     return set_.field(stress_field_);
   }
 
-  // The particle set with its output fields (displacement, stress, damage, body, constraint)
-  // brought up to date, ready for write_vtu.
+  // The particle set with its output fields (displacement, stress, damage, max_principal_stress,
+  // fragment, body, constraint) brought up to date, ready for write_vtu. `fragment` labels the
+  // connected pieces of the intact-bond graph (find_fragments): after fracture, colour by it to
+  // see the pieces.
   const ParticleSet<Dim>& output() {
     stresses();
     auto& u = set_.field(displacement_);
@@ -322,6 +326,7 @@ class ElasticSolver {
       vec_type direction;
       principal[i] = MaxPrincipalStress::principal<Dim, double>(sigma[i], direction);
     }
+    set_.field(fragment_) = find_fragments(bonds_).label;
     return set_;
   }
 
@@ -503,7 +508,7 @@ class ElasticSolver {
   stress_model_type model_;
   contact_type contact_;
   double mass_ = 0;
-  FieldHandle<std::int32_t> body_, constraint_field_;
+  FieldHandle<std::int32_t> body_, constraint_field_, fragment_;
   FieldHandle<vec_type> displacement_;
   FieldHandle<mat_type> stress_field_;
   FieldHandle<double> damage_, principal_;
