@@ -6,8 +6,10 @@ usage: /usr/bin/python3 examples/three_point_bending/plot.py [output dir]   (def
 
 Writes load_deflection.png, stress_history.png (Fig 6: sigma_xx at the top and bottom of
 mid-span against time), flexural_strain.png (Fig 7: simulated against experimental flexural
-strain) and crack_caseNN.png (Fig 5: final particles coloured by damage and by sigma_xx).
+strain) and crack_caseNN.png (Fig 5: final particles coloured by damage and by sigma_xx); for a
+3D run also fracture_surface_caseNN.png (where the two pieces meet, seen along the beam).
 """
+import collections
 import csv
 import sys
 from pathlib import Path
@@ -84,4 +86,32 @@ for case in cases:
     a1.set_title(f"case {case}: crack path (damage) and sigma_xx at the end of the run")
     fig.tight_layout()
     fig.savefig(out / f"crack_case{case}.png", dpi=120)
+    # 3D runs: the fracture surface seen along the beam, i.e. for every row of particles along x
+    # (one reference y, z) where its two large pieces meet, as the x of the midpoint between the
+    # neighbours that ended in different pieces (blank: the row is not split).
+    if "z0" not in rows[0] or all(float(r["z0"]) == 0 for r in rows):
+        continue
+    sizes = collections.Counter(r["fragment"] for r in rows)
+    large = {f for f, n in sizes.items() if n > len(rows) / 10}
+    lines = collections.defaultdict(list)
+    for r in rows:
+        lines[(round(1e3 * float(r["y0"]), 3), round(1e3 * float(r["z0"]), 3))].append((float(r["x0"]), r["fragment"]))
+    ys = sorted({k[0] for k in lines})
+    zs = sorted({k[1] for k in lines})
+    surface = [[float("nan")] * len(zs) for _ in ys]
+    for (yk, zk), line in lines.items():
+        line.sort()
+        cuts = [0.5e3 * (a[0] + b[0]) for a, b in zip(line, line[1:])
+                if a[1] != b[1] and a[1] in large and b[1] in large]
+        if cuts:
+            surface[ys.index(yk)][zs.index(zk)] = max(cuts, key=abs)
+    fig, ax = plt.subplots(figsize=(8, 3.5))
+    image = ax.pcolormesh(zs, ys, surface, cmap="coolwarm", vmin=-6, vmax=6, shading="nearest")
+    fig.colorbar(image, ax=ax, label="x of the fracture surface (mm)")
+    ax.set_aspect("equal")
+    ax.set_xlabel("z across the width (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title(f"case {case}, 3D: fracture surface between the two pieces")
+    fig.tight_layout()
+    fig.savefig(out / f"fracture_surface_case{case}.png", dpi=120)
 print(f"wrote PNGs to {out}")

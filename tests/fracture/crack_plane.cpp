@@ -4,22 +4,11 @@
 #include "mpsfsi/fracture/crack_plane.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
+#include "support/ice.hpp"
 
 using namespace mpsfsi;
 
 namespace {
-
-template <int Dim>
-SolidParameters<Dim> ice(double l0) {
-  SolidParameters<Dim> p;
-  p.l0 = l0;
-  p.density = 917;
-  p.youngs_modulus = 270.084e6;
-  p.poisson_ratio = 0.3;
-  p.plane_model = PlaneModel::plane_stress;
-  p.tensile_strength = 1.140e6;
-  return p;
-}
 
 // Brittle policies with no contact, so that a separated piece is truly free in these tests.
 template <int Dim>
@@ -36,7 +25,8 @@ TEST_CASE_TEMPLATE("fracture.crack_plane: an imposed crack plane cuts a clean st
   Vec<Dim> upper = Vec<Dim>::Constant(0.04);
   upper[0] = 0.1;
   upper[1] = 0.06;
-  ElasticSolver<Dim, Brittle<Dim>> s(scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0), ice<Dim>(l0));
+  ElasticSolver<Dim, Brittle<Dim>> s(scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0),
+                                     test::case02_ice<Dim>(l0));
   // A vertical plane x = 0.055 (through the column of centres at 0.055): every particle of that
   // column fails with normal x, as a crack running across the bar would do.
   std::size_t cut = 0;
@@ -71,7 +61,7 @@ TEST_CASE_TEMPLATE("fracture.crack_plane: a bar under uniform tension breaks jus
   Vec<Dim> upper = Vec<Dim>::Constant(0.03);
   upper[0] = 0.12;
   const auto bar = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
-  auto params = ice<Dim>(l0);
+  auto params = test::case02_ice<Dim>(l0);
   params.plane_model = PlaneModel::plane_stress;
   const double nu = params.poisson_ratio;
   // Uniaxial stress state: stretch along x, lateral contraction nu (plane stress / 3D).
@@ -107,7 +97,7 @@ TEST_CASE_TEMPLATE("fracture.crack_plane: under pure bending the criterion reads
   Vec<Dim> upper = Vec<Dim>::Constant(height);
   upper[0] = 0.12;
   const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
-  auto params = ice<Dim>(l0);
+  auto params = test::case02_ice<Dim>(l0);
   const double nu = params.poisson_ratio;
   const auto deformed = [&](const Vec<Dim>& X) {  // exact pure bending, neutral axis y = H/2
     const double x = X[0] - 0.06, y = X[1] - height / 2, z = Dim == 3 ? X[Dim - 1] - height / 2 : 0.0;

@@ -8,24 +8,9 @@
 #include "mpsfsi/fracture/fragments.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
+#include "support/ice.hpp"
 
 using namespace mpsfsi;
-
-namespace {
-
-template <int Dim>
-SolidParameters<Dim> ice(double l0) {
-  SolidParameters<Dim> p;
-  p.l0 = l0;
-  p.density = 917;
-  p.youngs_modulus = 270.084e6;
-  p.poisson_ratio = 0.3;
-  p.plane_model = PlaneModel::plane_stress;
-  p.tensile_strength = 1.140e6;
-  return p;
-}
-
-}  // namespace
 
 TEST_SUITE("fracture") {
 
@@ -36,7 +21,7 @@ TEST_CASE_TEMPLATE("fracture.fragments: an imposed crack splits a bar into the t
   Vec<Dim> upper = Vec<Dim>::Constant(0.04);
   upper[0] = 0.1;
   ElasticSolver<Dim, BrittleSolidPolicies<Dim>> s(scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0),
-                                                   ice<Dim>(l0));
+                                                   test::case02_ice<Dim>(l0));
   const auto& x = s.particles().positions();
   const std::size_t n = x.size();
 
@@ -80,7 +65,7 @@ TEST_CASE("fracture.fragments: separate bodies and a particle with every bond cu
   for (std::size_t i = 0; i < first; ++i) set.add(set.positions()[i] + Vec<2>(0.1, 0), ParticleKind::solid);
   std::vector<std::int32_t> body(set.size(), 0);
   for (std::size_t i = first; i < set.size(); ++i) body[i] = 1;
-  ElasticSolver<2, BrittleSolidPolicies<2>> s(set, ice<2>(l0), body);
+  ElasticSolver<2, BrittleSolidPolicies<2>> s(set, test::case02_ice<2>(l0), body);
   CHECK(find_fragments(s.bonds()).count() == 2);
 
   // Isolate the centre particle of the first body by cutting all its bonds.

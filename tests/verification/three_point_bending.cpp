@@ -73,8 +73,9 @@ TEST_CASE("three-point bending case 02 breaks cleanly at mid-span") {
 TEST_SUITE("validation.fracture") {
 
 TEST_CASE("three-point bending: all five cases of Table 1") {
-  std::string table = "\n| case | P_sim N | P_exp N | eps_sim | eps_exp | error | failures within | surface within | wall s |\n"
-                      "|---|---|---|---|---|---|---|---|---|\n";
+  std::string table =
+      "\n| case | P_sim N | P_exp N | eps_sim | eps_exp | error | failures within | surface within | wall s |\n"
+      "|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& c : bending::table1()) {
     const auto r = bending::run<2>(c, bending::Options{});
     char line[256];
