@@ -82,7 +82,11 @@ struct Result {
   std::size_t overstretched_bonds = 0;
   bool broken_but_overstretched = false;
   double crack_offset = 0;        // largest |x| of a failed particle (reference), m
-  double fracture_surface_offset = -1;  // broken beam: largest |x| of its fracture surface (reference), m
+  // A broken beam's fracture surface, where each lattice row along x passes from one piece to
+  // the other (reference configuration): its largest |x| (m), the number of such crossings (one
+  // per row for a single surface), how many lie more than 2 l0 from the centre line, and rows.
+  double fracture_surface_offset = -1;
+  std::size_t fracture_surface_crossings = 0, fracture_surface_beyond_2l0 = 0, lattice_rows = 0;
   double crack_start_x = 0, crack_start_y = 0;  // the first failed particle (reference), m
   double crack_top = 0;           // highest failed particle (reference), m
   double wall_seconds = 0;
@@ -354,20 +358,32 @@ Result run(const IceBeamCase& c, const Options& o) {
       r.crack_top = std::max(r.crack_top, x[1]);
     }
   }
-  // The fracture surface of a broken beam: it passes between every two lattice neighbours (one
-  // spacing apart) that ended in different large pieces; its distance from the centre line is
-  // that of the midpoint between them. Failed particles off this surface (a front that wandered
-  // and came back, bonds cut on one side only) count in crack_offset but not here.
+  // The fracture surface of a broken beam, line by line: along every lattice row in x (one y,
+  // one z), skipping particles that are not in one of the two large pieces (chips: particles
+  // that lost every bond), it lies halfway between the last particle of one piece and the first
+  // of the other. A failure off that surface cuts bonds without separating the beam there.
   if (r.broken) {
-    const auto is_large = [&](std::size_t i) { return fragments.sizes[static_cast<std::size_t>(fragments.label[i])] > beam_count / 10; };
-    for (std::size_t i = 0; i < beam_count; ++i)
-      for (Offset b = s.bonds().begin(i); b < s.bonds().end(i); ++b) {
-        const auto j = static_cast<std::size_t>(s.bonds().neighbor(b));
-        if (j <= i || j >= beam_count || s.bonds().r0(b).norm() > 1.01 * l0) continue;
-        if (fragments.label[i] == fragments.label[j] || !is_large(i) || !is_large(j)) continue;
-        const double mid = 0.5 * (s.reference_positions()[i][0] + s.reference_positions()[j][0]);
-        r.fracture_surface_offset = std::max(r.fracture_surface_offset, std::abs(mid));
+    const auto is_large = [&](std::size_t i) {
+      return fragments.sizes[static_cast<std::size_t>(fragments.label[i])] > beam_count / 10;
+    };
+    const int columns = 2 * half_columns + 1;
+    for (int k = 0; k < z_layers; ++k)
+      for (int iy = 0; iy < layers; ++iy) {
+        const auto first = static_cast<std::size_t>((k * layers + iy) * columns);
+        std::size_t last_large = beam_count;
+        for (int ix = 0; ix < columns; ++ix) {
+          const std::size_t i = first + static_cast<std::size_t>(ix);
+          if (!is_large(i)) continue;
+          if (last_large < beam_count && fragments.label[i] != fragments.label[last_large]) {
+            const double x = 0.5 * (s.reference_positions()[i][0] + s.reference_positions()[last_large][0]);
+            r.fracture_surface_offset = std::max(r.fracture_surface_offset, std::abs(x));
+            ++r.fracture_surface_crossings;
+            if (std::abs(x) > 2 * l0 + 1e-12) ++r.fracture_surface_beyond_2l0;
+          }
+          last_large = i;
+        }
       }
+    r.lattice_rows = static_cast<std::size_t>(z_layers * layers);
   }
   if (!o.out.empty()) {
     CsvWriter history(o.out + "/case" + c.name + "_history.csv",

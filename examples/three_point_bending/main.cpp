@@ -96,6 +96,9 @@ int main(int argc, char** argv) try {
                 c.youngs_modulus() / 1e6, c.tensile_strength() / 1e6, c.peak_load, 1e3 * c.deflection, r.peak_load,
                 1e3 * r.deflection_at_peak, r.flexural_strain, c.flexural_strain(), 100 * r.error(), r.broken ? "yes" : "NO",
                 r.crack_offset / r.l0, surface, r.wall_seconds);
+    if (r.broken)
+      std::printf("     fracture surface: %zu crossings of %zu rows along x, %zu of them more than 2 l0 from the centre line\n",
+                  r.fracture_surface_crossings, r.lattice_rows, r.fracture_surface_beyond_2l0);
     if (!r.broken)
       std::printf("     not in two pieces: %zu intact bonds stretched over 5 %%; without them the beam %s\n",
                   r.overstretched_bonds, r.broken_but_overstretched ? "is in two pieces" : "is still one piece");

@@ -87,8 +87,8 @@ for case in cases:
     fig.tight_layout()
     fig.savefig(out / f"crack_case{case}.png", dpi=120)
     # 3D runs: the fracture surface seen along the beam, i.e. for every row of particles along x
-    # (one reference y, z) where its two large pieces meet, as the x of the midpoint between the
-    # neighbours that ended in different pieces (blank: the row is not split).
+    # (one reference y, z) where its two large pieces meet, as the x halfway between the last
+    # particle of one and the first of the other (blank: the row is not split).
     if "z0" not in rows[0] or all(float(r["z0"]) == 0 for r in rows):
         continue
     sizes = collections.Counter(r["fragment"] for r in rows)
@@ -100,9 +100,8 @@ for case in cases:
     zs = sorted({k[1] for k in lines})
     surface = [[float("nan")] * len(zs) for _ in ys]
     for (yk, zk), line in lines.items():
-        line.sort()
-        cuts = [0.5e3 * (a[0] + b[0]) for a, b in zip(line, line[1:])
-                if a[1] != b[1] and a[1] in large and b[1] in large]
+        line = sorted(p for p in line if p[1] in large)  # chips (particles with no bond left) skipped
+        cuts = [0.5e3 * (a[0] + b[0]) for a, b in zip(line, line[1:]) if a[1] != b[1]]
         if cuts:
             surface[ys.index(yk)][zs.index(zk)] = max(cuts, key=abs)
     fig, ax = plt.subplots(figsize=(8, 3.5))

@@ -29,6 +29,7 @@ void check_clean_break(const bending::Result& r, bool every_failure_within_2l0) 
   CHECK(r.crack_start_y < r.l0);
   CHECK(r.crack_top >= r.input.height - 2 * r.l0);
   CHECK(r.broken);
+  CHECK(r.fracture_surface_crossings == r.lattice_rows);  // one surface, every row crosses it once
   CHECK(r.fracture_surface_offset >= 0);
   CHECK(r.fracture_surface_offset <= 2 * r.l0 + 1e-12);
   if (every_failure_within_2l0) CHECK(r.crack_offset <= 2 * r.l0 + 1e-12);
