@@ -247,7 +247,11 @@ Result run(const IceBeamCase& c, const Options& o) {
     pvd = std::make_unique<PvdWriter>(o.out + "/case" + c.name + ".pvd");
   }
   std::unique_ptr<ProgressReporter> progress;
-  if (o.progress) progress = std::make_unique<ProgressReporter>(1.2 * expected);
+  // Progress runs to the failure plus the fracture's few milliseconds: the simulated beam
+  // deflects 13-20 % more than Table 1's, so it fails later than `expected` (3D case 02 at
+  // l0 = 2 mm: about 1.4 expected, after which a 1.2 expected horizon sat at 100 % for 8 minutes).
+  const double progress_horizon = 1.6 * expected;
+  if (o.progress) progress = std::make_unique<ProgressReporter>(progress_horizon);
   auto snapshot = [&] {
     if (!pvd) return;
     const std::string file = numbered_file_name("case" + c.name, frame++);
@@ -300,7 +304,7 @@ Result run(const IceBeamCase& c, const Options& o) {
     } else if (fracturing && next_snapshot > s.time() + 5e-5) {
       next_snapshot = s.time();  // the first crack: switch to the fine cadence at once
     }
-    if (progress) progress->update(s.step_count(), std::min(s.time(), 1.2 * expected));
+    if (progress) progress->update(s.step_count(), std::min(s.time(), progress_horizon));
     // Stop when the beam is in two pieces and the load has stayed below 2 % of the peak for
     // 0.5 ms, or 5 ms after the first crack, or at three times the expected failure time.
     if (s.first_failure_time() >= 0 && load < 0.02 * r.peak_load) {
