@@ -87,6 +87,7 @@ struct Result {
   // per row for a single surface), how many lie more than 2 l0 from the centre line, and rows.
   double fracture_surface_offset = -1;
   std::size_t fracture_surface_crossings = 0, fracture_surface_beyond_2l0 = 0, lattice_rows = 0;
+  std::size_t rows_crossed_once = 0;  // rows with exactly one crossing
   double crack_start_x = 0, crack_start_y = 0;  // the first failed particle (reference), m
   double crack_top = 0;           // highest failed particle (reference), m
   double wall_seconds = 0;
@@ -107,7 +108,13 @@ double stretch(const Solver& s, std::size_t i, mpsfsi::Offset b) {
 // crack faces are left out): a broken beam has two. The beam is particles [0, beam_count); the
 // rollers are separate bodies with no bonds to it, so they are fragments of their own.
 inline std::size_t large_pieces(const mpsfsi::Fragments& f, std::size_t beam_count) {
-  return f.count_larger_than(beam_count / 10);
+  // Labels follow each fragment's first particle and the beam comes first, so the beam's
+  // fragments are the labels below the first roller particle's.
+  const std::size_t beam_labels =
+      beam_count < f.label.size() ? static_cast<std::size_t>(f.label[beam_count]) : f.count();
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < beam_labels; ++k) n += f.sizes[k] > beam_count / 10 ? 1 : 0;
+  return n;
 }
 
 }  // namespace detail
@@ -374,7 +381,7 @@ Result run(const IceBeamCase& c, const Options& o) {
     for (int k = 0; k < z_layers; ++k)
       for (int iy = 0; iy < layers; ++iy) {
         const auto first = static_cast<std::size_t>((k * layers + iy) * columns);
-        std::size_t last_large = beam_count;
+        std::size_t last_large = beam_count, crossings = 0;
         for (int ix = 0; ix < columns; ++ix) {
           const std::size_t i = first + static_cast<std::size_t>(ix);
           if (!is_large(i)) continue;
@@ -382,10 +389,12 @@ Result run(const IceBeamCase& c, const Options& o) {
             const double x = 0.5 * (s.reference_positions()[i][0] + s.reference_positions()[last_large][0]);
             r.fracture_surface_offset = std::max(r.fracture_surface_offset, std::abs(x));
             ++r.fracture_surface_crossings;
+            ++crossings;
             if (std::abs(x) > 2 * l0 + 1e-12) ++r.fracture_surface_beyond_2l0;
           }
           last_large = i;
         }
+        r.rows_crossed_once += crossings == 1 ? 1 : 0;
       }
     r.lattice_rows = static_cast<std::size_t>(z_layers * layers);
   }

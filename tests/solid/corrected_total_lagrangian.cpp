@@ -66,7 +66,11 @@ void check_force_loop_against_bond_sum(ModelBlock<Dim, CorrectedTotalLagrangian<
     VecArray<Dim> f;
     block.model.internal_forces(x, block.bonds, f);
     double worst = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) worst = std::max(worst, (f[i] - reference[i]).norm());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      REQUIRE(f[i].allFinite());
+      REQUIRE(reference[i].allFinite());
+      worst = std::max(worst, (f[i] - reference[i]).norm());
+    }
     CHECK(worst < 1e-12 * scale);
   }
   parallel::set_num_threads(saved);

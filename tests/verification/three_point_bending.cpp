@@ -21,7 +21,8 @@ const bending::Result& baseline_case02() {
 // centre line and breaks the beam in two; the load then falls to near zero (5 % of the peak).
 // "Within 2 l0" is read on the fracture surface between the two pieces. With
 // `every_failure_within_2l0` it must hold for every failed particle too (the 2D study at
-// l0 = 2 mm); at 1 mm and in 3D some failures beside the crack reach 3 l0 (README).
+// l0 = 2 mm); in 3D some failures beside the crack reach 3 l0 (README). At l0 = 1 mm case 02
+// shatters since session 17 (README: an instability after fracture), so that test fails.
 void check_clean_break(const bending::Result& r, bool every_failure_within_2l0) {
   CAPTURE(r.input.name);
   CAPTURE(r.crack_offset / r.l0);
@@ -29,7 +30,7 @@ void check_clean_break(const bending::Result& r, bool every_failure_within_2l0) 
   CHECK(r.crack_start_y < r.l0);
   CHECK(r.crack_top >= r.input.height - 2 * r.l0);
   CHECK(r.broken);
-  CHECK(r.fracture_surface_crossings == r.lattice_rows);  // one surface, every row crosses it once
+  CHECK(r.rows_crossed_once == r.lattice_rows);  // one surface: every row crosses it exactly once
   CHECK(r.fracture_surface_offset >= 0);
   CHECK(r.fracture_surface_offset <= 2 * r.l0 + 1e-12);
   if (every_failure_within_2l0) CHECK(r.crack_offset <= 2 * r.l0 + 1e-12);
@@ -141,11 +142,11 @@ TEST_CASE("three-point bending: case 02 in 3D at l0 = h/8 breaks the same way" *
 // Runs of about 40 minutes on 2 cores: their own CTest entry, labelled "validation" and "long".
 TEST_SUITE("long.fracture") {
 
-// Acceptance 4 at the 2D study's l0 = 2 mm (19 layers, 37-58 min on 2 cores). Known failure
+// Acceptance 4 at the 2D study's l0 = 2 mm (19 layers, about 40 minutes on 2 cores). Known failure
 // (issue 5): the beam breaks in two from the bottom centre to the top and the load falls to
 // zero, but at one bottom corner the fracture surface is 2.5-3 l0 from the centre line in 4 of
-// its 779 rows (README, session 18).
-TEST_CASE("three-point bending: case 02 in 3D at l0 = 2 mm breaks the same way" * doctest::may_fail()) {
+// its 779 rows (README, session 18): that one check fails, every other must pass.
+TEST_CASE("three-point bending: case 02 in 3D at l0 = 2 mm breaks the same way" * doctest::expected_failures(1)) {
   run_3d_case02(0.002);
 }
 

@@ -28,8 +28,9 @@ struct Fragments {
 };
 
 // Labels the fragments of `bonds` by depth-first search over intact bonds, O(particles + bonds).
-// `keep(i, b)` may leave intact bonds out (e.g. overstretched ones, for a diagnostic); it is
-// asked once for every intact bond b of particle i reached by the search.
+// `keep(i, b)` may leave intact bonds out (e.g. overstretched ones, for a diagnostic). It is
+// asked only for intact bonds whose far end is not yet labelled, so it must be symmetric:
+// keep(i, b) == keep(j, reverse(b)).
 template <int Dim, class Scalar, class KeepBond>
 Fragments find_fragments(const BondList<Dim, Scalar>& bonds, KeepBond keep) {
   const std::size_t n = bonds.num_particles();
