@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -34,8 +35,10 @@ struct SolidModelContext {
 // inside the particle (the quadratic part of the field leaks into the gradient), which softened
 // the oscillating plate by 4 % at H/l0 = 10; with the quadratic terms that error goes (README).
 // A_i = [I 0] + sum_j (r_ij - r0_ij) g_ij^T with g_ij = beta_ij M_i^+ phi(r0_ij) and
-// M_i = sum_j beta_ij phi phi^T (pseudo-inverse: fragments with too few bonds keep the fitted part
-// they can resolve and stay undeformed in the rest).
+// M_i = sum_j beta_ij phi phi^T. A particle whose neighbourhood cutting has thinned (less than a
+// quarter of its intact neighbourhood's strongest direction's weight in some direction) uses the linear fit with those
+// directions' weight raised to that quarter (kWeakDirectionFloor): it reads them softly, and a
+// direction with no bond at all not at all (F = I there, so a chip carries no stress).
 template <int Dim, class Scalar = double>
 class DeformationFit {
  public:
@@ -47,14 +50,21 @@ class DeformationFit {
   using quad_type = Eigen::Matrix<Scalar, quad, 1>;
   using affine_type = Eigen::Matrix<Scalar, Dim, width>;
 
-  // Fit coefficients of every bond, for the current intact bonds.
+  // Fit coefficients of every bond, for the bonds as they are now, which become the reference
+  // neighbourhoods: each particle keeps the largest eigenvalue of its linear moment matrix (a full
+  // neighbourhood's is n0/d on a lattice) to weigh its fit against once bonds are cut (rebuild).
   void build(const BondList<Dim, Scalar>& bonds, Scalar l0) {
     inv_l0_ = 1 / l0;
     const std::size_t n = bonds.num_particles();
     coeff_.resize(bonds.num_bonds());
     gradient_sum_.resize(n);
+    reference_moment_.resize(n);
     MPSFSI_OMP(parallel for schedule(dynamic, 64))
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) rebuild(bonds, static_cast<std::size_t>(ii));
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      reference_moment_[i] = linear_moment(bonds, i).eigenvalues().maxCoeff();
+      rebuild(bonds, i);
+    }
   }
 
   // Refits particle i only (after some of its bonds were cut).
@@ -64,15 +74,19 @@ class DeformationFit {
       const basis_type p = basis(bonds.r0(b));
       m.noalias() += bonds.beta(b) * p * p.transpose();
     }
-    // The quadratic fit needs bonds in enough directions; next to a crack or at a fragment's
-    // corner it may not have them, and an ill-conditioned fit turns round-off into stress. Then
-    // the particle falls back to the linear (Khayyer-Gotoh) fit, and that to its pseudo-inverse.
+    // The quadratic fit needs bonds in enough directions and with enough weight. Next to a crack
+    // or at a fragment's corner a particle may not have them; it then falls back to the linear
+    // (Khayyer-Gotoh) fit with its weakly resolved directions read softly (weak_direction_floor).
+    const auto linear = linear_moment(bonds, i);
     Eigen::Matrix<Scalar, width, width> pinv = Eigen::Matrix<Scalar, width, width>::Zero();
-    if (!pseudo_inverse<width>(m, pinv, kQuadraticConditionLimit)) {
-      Mat<Dim, Scalar> linear_inverse = Mat<Dim, Scalar>::Zero();
-      pseudo_inverse<Dim>(Mat<Dim, Scalar>(m.template topLeftCorner<Dim, Dim>()), linear_inverse, Scalar(0));
+    if (linear.eigenvalues().minCoeff() < kWeakDirectionFloor * reference_moment_[i] ||
+        !pseudo_inverse<width>(m, pinv, kQuadraticConditionLimit)) {
+      vec_type inverse;
+      for (int k = 0; k < Dim; ++k)
+        inverse[k] = 1 / std::max(linear.eigenvalues()[k], kWeakDirectionFloor * reference_moment_[i]);
       pinv.setZero();
-      pinv.template topLeftCorner<Dim, Dim>() = linear_inverse;
+      pinv.template topLeftCorner<Dim, Dim>() =
+          linear.eigenvectors() * inverse.asDiagonal() * linear.eigenvectors().transpose();
     }
     vec_type sum = vec_type::Zero();
     for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
@@ -143,6 +157,27 @@ class DeformationFit {
   // neighbourhood has 0.2, a flat free surface's 8 bonds 0.0033, a corner's 5 bonds 0.0044).
   static constexpr Scalar kQuadraticConditionLimit = Scalar(1e-3);
 
+  // The least weight, as a fraction of the strongest direction of the particle's intact
+  // neighbourhood (reference_moment_), with which a direction is read at face value. A least-squares fit normalises the weights away: a particle
+  // left by cutting with a strong bond and a long weak one (w(2 l0) is 1/22 of w(l0)) reads the
+  // weak bond's stretch as fully as the strong one's. Beside an opening crack such a bond spans
+  // the gap, stretched by tens of per cent, and the refit particle jumps from sigma_f to 100 times
+  // it, which put the energy of the whole beam into a few particles in one step (the l0 = 1 mm
+  // bending beam shattered, README). Below the floor the moment matrix's eigenvalue is raised to
+  // it, so such a direction counts in proportion to the weight it has: no bond's coefficient is
+  // more than 1/floor times its value in the intact neighbourhood. Every particle of an intact
+  // lattice is above it (the weakest direction anywhere, at a corner, is 0.35 of a full
+  // neighbourhood's in 2D and 0.29 in 3D at re = 2.1 l0, and more of the corner's own strongest),
+  // and directions without any bond keep F = I (a chip carries no stress).
+  static constexpr Scalar kWeakDirectionFloor = Scalar(0.25);
+
+  // Eigen-decomposition of particle i's linear moment matrix sum_j beta_ij r0_ij r0_ij^T.
+  static Eigen::SelfAdjointEigenSolver<mat_type> linear_moment(const BondList<Dim, Scalar>& bonds, std::size_t i) {
+    mat_type m = mat_type::Zero();
+    for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) m.noalias() += bonds.beta(b) * bonds.r0(b) * bonds.r0(b).transpose();
+    return Eigen::SelfAdjointEigenSolver<mat_type>(m);
+  }
+
   // Pseudo-inverse of a symmetric positive semi-definite matrix, dropping eigenvalues below
   // 1e-8 of the largest. Returns false (and leaves `out` unspecified) if the smallest eigenvalue
   // is below condition_limit times the largest.
@@ -164,6 +199,7 @@ class DeformationFit {
   }
 
   Scalar inv_l0_ = 1;
+  std::vector<Scalar> reference_moment_;
   std::vector<basis_type> coeff_;
   VecArray<Dim, Scalar> gradient_sum_;
 };
