@@ -103,6 +103,46 @@ TEST_CASE("solid.deformation: a particle whose bonds span one direction stays un
   CHECK(f.allFinite());
 }
 
+// The l0 = 1 mm bending beam shattered because of this configuration (README): cutting left a
+// particle beside the crack with one strong bond and one long weak bond (w(2 l0) = 0.05 against
+// w(sqrt 2 l0) = 0.49) that spans the opening crack. Two bonds determine a linear fit exactly, so
+// least squares read the weak bond's 25 % shear at face value; the floor on weak directions
+// (kWeakDirectionFloor = 1/4 of the intact neighbourhood's strongest eigenvalue) bounds every
+// bond's coefficient by beta |r0| / (lambda_ref / 4).
+TEST_CASE("solid.deformation: a thinned neighbourhood reads a long weak bond across a crack softly") {
+  const double l0 = 0.01;
+  Block<2> block(l0);
+  const auto& X = block.set.positions();
+  auto at = [&](int ix, int iy) {
+    for (std::size_t i = 0; i < X.size(); ++i)
+      if ((X[i] - Vec<2>((ix + 0.5) * l0, (iy + 0.5) * l0)).norm() < 1e-9) return i;
+    FAIL("no particle at the lattice site");
+    return std::size_t{0};
+  };
+  const std::size_t c = at(3, 2), strong = at(2, 3), weak = at(3, 4);
+  Mat<2> moment = Mat<2>::Zero();
+  for (Offset b = block.bonds.begin(c); b < block.bonds.end(c); ++b)
+    moment += block.bonds.beta(b) * block.bonds.r0(b) * block.bonds.r0(b).transpose();
+  const double reference = Eigen::SelfAdjointEigenSolver<Mat<2>>(moment).eigenvalues().maxCoeff();
+  CHECK(reference == doctest::Approx(3.27).epsilon(0.01));  // n0/2 of the full lattice at re = 2.1 l0
+  for (Offset b = block.bonds.begin(c); b < block.bonds.end(c); ++b) {
+    const auto j = static_cast<std::size_t>(block.bonds.neighbor(b));
+    if (j != strong && j != weak) block.bonds.cut(b);
+  }
+  block.fit.rebuild(block.bonds, c);
+  REQUIRE(block.bonds.intact_count(c) == 2);
+  // The crack opens between c and `weak` by half a spacing, sideways.
+  VecArray<2> x = X;
+  x[weak][0] += 0.5 * l0;
+  const Mat<2> f = block.fit.gradient(x, block.bonds, c);
+  // Least squares on the two bonds would give F - I = [[0, 0.25], [0, 0]]. The bound:
+  // beta |r0| / (reference / 4) per unit displacement, beta |r0| = w(2 l0) / (2 l0).
+  const double bound = 0.5 * l0 * (KoshizukaWeight::value(2 * l0, 2.1 * l0) / (2 * l0)) / (0.25 * reference);
+  CHECK((f - Mat<2>::Identity()).cwiseAbs().maxCoeff() <= bound * (1 + 1e-12));
+  CHECK((f - Mat<2>::Identity()).cwiseAbs().maxCoeff() > 0.5 * bound);  // read softly, not ignored
+  CHECK(bound < 0.02);
+}
+
 TEST_CASE("solid.deformation: SVK stress is zero for rigid rotation and E eps for small uniaxial strain") {
   LameConstants<double> lame{1.0e6, 2.0e6};
   const Mat<2> rotation = Eigen::Rotation2D<double>(1.1).toRotationMatrix();
