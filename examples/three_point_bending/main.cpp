@@ -99,6 +99,9 @@ int main(int argc, char** argv) try {
     if (r.broken)
       std::printf("     fracture surface: %zu crossings of %zu rows along x, %zu of them more than 2 l0 from the centre line\n",
                   r.fracture_surface_crossings, r.lattice_rows, r.fracture_surface_beyond_2l0);
+    if (r.first_failure >= 0)
+      std::printf("     energy after the first crack (indenter work counted): at most %+.2f %% of the %.4g J%s at the crack\n",
+                  100 * r.energy_rise_after_failure, r.energy_at_failure, o.dim == 2 ? "/m" : "");
     if (!r.broken)
       std::printf("     not in two pieces: %zu intact bonds stretched over 5 %%; without them the beam %s\n",
                   r.overstretched_bonds, r.broken_but_overstretched ? "is in two pieces" : "is still one piece");

@@ -21,8 +21,12 @@ const bending::Result& baseline_case02() {
 // centre line and breaks the beam in two; the load then falls to near zero (5 % of the peak).
 // "Within 2 l0" is read on the fracture surface between the two pieces. With
 // `every_failure_within_2l0` it must hold for every failed particle too (the 2D study at
-// l0 = 2 mm); in 3D some failures beside the crack reach 3 l0 (README). At l0 = 1 mm case 02
-// shatters since session 17 (README: an instability after fracture), so that test fails.
+// l0 = 2 mm); in 3D some failures beside the crack reach 3 l0 (README).
+// Energy: after the first crack only the indenter feeds energy in (counted), and the solid's
+// energy minus that work must not rise by more than 1 % of its value at the crack. The five 2D
+// cases at 2 mm and case 02 at 1 mm rise by at most 0.33 % (the explicit scheme's energy error
+// and contact springs switching on at cut bonds); the 1 mm beam that shattered before the weak-
+// direction floor of DeformationFit rose 2000-fold.
 void check_clean_break(const bending::Result& r, bool every_failure_within_2l0) {
   CAPTURE(r.input.name);
   CAPTURE(r.crack_offset / r.l0);
@@ -35,6 +39,8 @@ void check_clean_break(const bending::Result& r, bool every_failure_within_2l0) 
   CHECK(r.fracture_surface_offset <= 2 * r.l0 + 1e-12);
   if (every_failure_within_2l0) CHECK(r.crack_offset <= 2 * r.l0 + 1e-12);
   CHECK(r.final_load_fraction < 0.05);
+  CHECK(r.energy_at_failure > 0);
+  CHECK(r.energy_rise_after_failure < 0.01);
 }
 
 // Elastic stiffness P/dd from the history at half the peak load.
