@@ -148,11 +148,12 @@ TEST_CASE("three-point bending: case 02 in 3D at l0 = h/8 breaks the same way" *
 // Runs of about 40 minutes on 2 cores: their own CTest entry, labelled "validation" and "long".
 TEST_SUITE("long.fracture") {
 
-// Acceptance 4 at the 2D study's l0 = 2 mm (19 layers, about 40 minutes on 2 cores). Known failure
-// (issue 5): the beam breaks in two from the bottom centre to the top and the load falls to
-// zero, but at one bottom corner the fracture surface is 2.5-3 l0 from the centre line in 4 of
-// its 779 rows (README, session 18): that one check fails, every other must pass.
-TEST_CASE("three-point bending: case 02 in 3D at l0 = 2 mm breaks the same way" * doctest::expected_failures(1)) {
+// Acceptance 4 at the 2D study's l0 = 2 mm (19 layers, about 45 minutes on 2 cores). Session 19,
+// after the weak-direction floor of DeformationFit: two pieces, every one of the 779 rows along x
+// crosses the fracture surface once, all within 1.5 l0 of the centre line (session 18: 4 rows at
+// 2.5-3 l0). That run was made before the energy-balance check was added, so that check has not
+// yet been run in 3D (README).
+TEST_CASE("three-point bending: case 02 in 3D at l0 = 2 mm breaks the same way") {
   run_3d_case02(0.002);
 }
 
