@@ -35,10 +35,11 @@ struct SolidModelContext {
 // inside the particle (the quadratic part of the field leaks into the gradient), which softened
 // the oscillating plate by 4 % at H/l0 = 10; with the quadratic terms that error goes (README).
 // A_i = [I 0] + sum_j (r_ij - r0_ij) g_ij^T with g_ij = beta_ij M_i^+ phi(r0_ij) and
-// M_i = sum_j beta_ij phi phi^T. A particle whose neighbourhood cutting has thinned (less than a
-// quarter of its intact neighbourhood's strongest direction's weight in some direction) uses the linear fit with those
-// directions' weight raised to that quarter (kWeakDirectionFloor): it reads them softly, and a
-// direction with no bond at all not at all (F = I there, so a chip carries no stress).
+// M_i = sum_j beta_ij phi phi^T. A particle whose neighbourhood cutting has thinned (in some
+// direction less than a quarter of the weight of its intact neighbourhood's strongest) uses the
+// linear fit with those directions' weight raised to that quarter (kWeakDirectionFloor): it
+// reads them softly, and a direction with no bond at all not at all (F = I there, so a chip
+// carries no stress).
 template <int Dim, class Scalar = double>
 class DeformationFit {
  public:
@@ -76,7 +77,7 @@ class DeformationFit {
     }
     // The quadratic fit needs bonds in enough directions and with enough weight. Next to a crack
     // or at a fragment's corner a particle may not have them; it then falls back to the linear
-    // (Khayyer-Gotoh) fit with its weakly resolved directions read softly (weak_direction_floor).
+    // (Khayyer-Gotoh) fit with its weakly resolved directions read softly (kWeakDirectionFloor).
     const auto linear = linear_moment(bonds, i);
     Eigen::Matrix<Scalar, width, width> pinv = Eigen::Matrix<Scalar, width, width>::Zero();
     if (linear.eigenvalues().minCoeff() < kWeakDirectionFloor * reference_moment_[i] ||
@@ -158,9 +159,10 @@ class DeformationFit {
   static constexpr Scalar kQuadraticConditionLimit = Scalar(1e-3);
 
   // The least weight, as a fraction of the strongest direction of the particle's intact
-  // neighbourhood (reference_moment_), with which a direction is read at face value. A least-squares fit normalises the weights away: a particle
-  // left by cutting with a strong bond and a long weak one (w(2 l0) is 1/22 of w(l0)) reads the
-  // weak bond's stretch as fully as the strong one's. Beside an opening crack such a bond spans
+  // neighbourhood (reference_moment_), with which a direction is read at face value. A
+  // least-squares fit normalises the weights away: a particle left by cutting with a strong bond
+  // and a long weak one (w(2 l0) is 1/22 of w(l0)) reads the weak bond's stretch as fully as the
+  // strong one's. Beside an opening crack such a bond spans
   // the gap, stretched by tens of per cent, and the refit particle jumps from sigma_f to 100 times
   // it, which put the energy of the whole beam into a few particles in one step (the l0 = 1 mm
   // bending beam shattered, README). Below the floor the moment matrix's eigenvalue is raised to
