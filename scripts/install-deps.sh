@@ -9,7 +9,8 @@ packages=(
   doctest-dev                    # tests
   libbenchmark-dev               # micro-benchmarks
   libhypre-dev                   # optional: BoomerAMG PPE solver (mpsfsi::hypre; brings MPI)
-  python3 python3-matplotlib     # plot scripts of the examples (from issue 3 on)
+  libcli11-dev libyaml-cpp-dev   # the examples' command lines and YAML case files
+  python3 python3-matplotlib     # the examples' plot scripts
 )
 
 missing=()

@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Dam break (Martin & Moyce 1952; Koshizuka & Oka 1996): a water column a wide and 2a high
 // collapses in a tank 4a long. Writes VTU/PVD snapshots, a CSV of the surge front and the
-// residual column height, and prints them against the experiment's scaling.
-//
-//   dam_break [--dim 2|3] [--l0 m] [--dt s, 0 = automatic] [--end s] [--every s] [--out dir]
+// residual column height, and prints them against the experiment's scaling. `dam_break --help`
+// lists the options.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,47 +16,20 @@
 #include <mpsfsi/io/vtu_writer.hpp>
 #include <mpsfsi/scenes/dam_break.hpp>
 
+#include "common/case_options.hpp"
+
 using namespace mpsfsi;
 
 namespace {
 
 struct Options {
   int dim = 2;
-  double l0 = 0;      // default: 5 mm in 2D, 20 mm in 3D
-  double dt = -1;     // default: 2e-4 s in 2D (issue 3's case), automatic in 3D; 0 = automatic
-  double end = 0.4;   // s
+  double l0 = 0;        // 0: 5 mm in 2D, 20 mm in 3D
+  double dt = -1;       // negative: 2e-4 s in 2D, automatic in 3D; 0: automatic
+  double end = 0.4;     // s
   double every = 0.02;  // s between snapshots
   std::string out = "out/dam_break";
 };
-
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int a = 1; a < argc; ++a) {
-    const std::string key = argv[a];
-    if (key == "--help" || a + 1 >= argc) {
-      std::fprintf(stderr, "usage: dam_break [--dim 2|3] [--l0 m] [--dt s] [--end s] [--every s] [--out dir]\n");
-      std::exit(key == "--help" ? 0 : 2);
-    }
-    const std::string v = argv[++a];
-    if (key == "--dim") o.dim = std::stoi(v);
-    else if (key == "--l0") o.l0 = std::stod(v);
-    else if (key == "--dt") o.dt = std::stod(v);
-    else if (key == "--end") o.end = std::stod(v);
-    else if (key == "--every") o.every = std::stod(v);
-    else if (key == "--out") o.out = v;
-    else {
-      std::fprintf(stderr, "dam_break: unknown option %s\n", key.c_str());
-      std::exit(2);
-    }
-  }
-  if (o.dim != 2 && o.dim != 3) {
-    std::fprintf(stderr, "dam_break: --dim must be 2 or 3\n");
-    std::exit(2);
-  }
-  if (o.l0 <= 0) o.l0 = o.dim == 2 ? 0.005 : 0.02;
-  if (o.dt < 0) o.dt = o.dim == 2 ? 2e-4 : 0.0;
-  return o;
-}
 
 template <int Dim>
 int run(const Options& o) {
@@ -74,6 +46,9 @@ int run(const Options& o) {
   double next_output = 0, wall = 0;
   std::printf("dam break %dD: %zu particles, l0 = %g m, dt = %s, to t = %g s\n", Dim, solver.particles().size(), o.l0,
               o.dt > 0 ? (std::to_string(o.dt) + " s").c_str() : "automatic (Courant 0.2)", o.end);
+  std::printf("columns: simulated time; T = t sqrt(2 g / a) and surge front Z/a (Martin & Moyce's scaling); "
+              "tau = t sqrt(g / a) and residual column height H/2a\n");
+  std::fprintf(stderr, "%s\n", ProgressReporter::legend());
   std::printf("%8s %8s %8s %8s %8s\n", "t (s)", "T", "Z/a", "tau", "H/2a");
   for (;;) {
     const double t = solver.time();
@@ -94,7 +69,7 @@ int run(const Options& o) {
     progress.update(solver.step_count(), solver.time());
   }
   progress.finish();
-  std::printf("wrote %s/dam_break.pvd and %s/dam_break.csv; plot with /usr/bin/python3 examples/dam_break/plot.py %s\n", o.out.c_str(),
+  std::printf("wrote %s/dam_break.pvd and %s/dam_break.csv; plot with python3 examples/dam_break/plot.py %s\n", o.out.c_str(),
               o.out.c_str(), o.out.c_str());
   return 0;
 }
@@ -102,7 +77,21 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) try {
-  const Options o = parse(argc, argv);
+  Options o;
+  mpsfsi_examples::CaseOptions cli("dam_break", "Dam break of a water column (Martin & Moyce 1952)");
+  using mpsfsi_examples::positive;
+  cli.add("--dim", o.dim, "dimension")->check(mpsfsi_examples::one_of({"2", "3"}));
+  cli.add("--l0", o.l0, "particle spacing; 0: 0.005 in 2D, 0.02 in 3D", "m")->check(mpsfsi_examples::non_negative());
+  cli.add("--dt", o.dt, "time step; 0: automatic (Courant 0.2); negative: 2e-4 in 2D, automatic in 3D", "s");
+  cli.add("--end", o.end, "end time", "s")->check(positive());
+  cli.add("--every", o.every, "interval between snapshots", "s")->check(positive());
+  cli.add("--out", o.out, "output folder");
+  if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
+  if (o.l0 == 0) o.l0 = o.dim == 2 ? 0.005 : 0.02;
+  if (o.dt < 0) o.dt = o.dim == 2 ? 2e-4 : 0.0;
+  if (cli.print_case_if_requested()) return 0;
+  std::filesystem::create_directories(o.out);
+  cli.write_case(o.out);
   return o.dim == 2 ? run<2>(o) : run<3>(o);
 } catch (const mpsfsi::SimulationError& e) {
   std::fprintf(stderr, "dam_break: %s\n(the last good snapshot is the last one in the .pvd)\n", e.what());

@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Dam break through an elastic gate (Antoci, Gallati & Sibilla 2007; issue 6): water 0.1 m wide
+// Dam break through an elastic gate (Antoci, Gallati & Sibilla 2007): water 0.1 m wide
 // and 0.14 m high held by a rubber gate 0.079 m x 0.005 m clamped at its top (rho_s = 1100 kg/m3,
 // E = 10 MPa, nu = 0.4), released at t = 0. Writes VTU/PVD of the fluid and the gate, a CSV of
 // the gate tip's displacement, and prints it; plot.py renders the tip history to PNG.
-//
-//   elastic_gate [--dim 2|3] [--l0 m] [--end s] [--every s] [--scheme iterated|explicit]
-//                [--tolerance rel] [--plane strain|stress] [--out dir]
+// `elastic_gate --help` lists the options.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,13 +19,15 @@
 #include <mpsfsi/scenes/elastic_gate.hpp>
 #include <mpsfsi/solid/elastic_solver.hpp>
 
+#include "common/case_options.hpp"
+
 using namespace mpsfsi;
 
 namespace {
 
 struct Options {
   int dim = 2;
-  double l0 = 0;        // default: 1 mm in 2D (5 particles across the gate), 2.5 mm in 3D
+  double l0 = 0;        // 0: 1 mm in 2D (5 particles across the gate), 2.5 mm in 3D
   double end = 0.4;     // s
   double every = 0.01;  // s between snapshots
   std::string scheme = "iterated";
@@ -35,40 +35,6 @@ struct Options {
   std::string plane = "strain";
   std::string out = "out/elastic_gate";
 };
-
-[[noreturn]] void usage(int code) {
-  std::fprintf(stderr,
-               "usage: elastic_gate [--dim 2|3] [--l0 m] [--end s] [--every s] [--scheme iterated|explicit]\n"
-               "                    [--tolerance rel] [--plane strain|stress] [--out dir]\n");
-  std::exit(code);
-}
-
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int a = 1; a < argc; ++a) {
-    const std::string key = argv[a];
-    if (key == "--help") usage(0);
-    if (a + 1 >= argc) usage(2);
-    const std::string v = argv[++a];
-    if (key == "--dim") o.dim = std::stoi(v);
-    else if (key == "--l0") o.l0 = std::stod(v);
-    else if (key == "--end") o.end = std::stod(v);
-    else if (key == "--every") o.every = std::stod(v);
-    else if (key == "--scheme") o.scheme = v;
-    else if (key == "--tolerance") o.tolerance = std::stod(v);
-    else if (key == "--plane") o.plane = v;
-    else if (key == "--out") o.out = v;
-    else {
-      std::fprintf(stderr, "elastic_gate: unknown option %s\n", key.c_str());
-      usage(2);
-    }
-  }
-  if ((o.dim != 2 && o.dim != 3) || (o.scheme != "iterated" && o.scheme != "explicit") ||
-      (o.plane != "strain" && o.plane != "stress") || !(o.end > 0) || !(o.every > 0))
-    usage(2);
-  if (o.l0 <= 0) o.l0 = o.dim == 2 ? 0.001 : 0.0025;
-  return o;
-}
 
 template <int Dim, class Scheme>
 int run(const Options& o) {
@@ -98,6 +64,7 @@ int run(const Options& o) {
               "length %.4f m, to t = %g s\n",
               Dim, Scheme::name, o.plane.c_str(), coupler.structure_offset(), coupler.solid().particles().size(), o.l0,
               scene.gate_length_used(o.l0), o.end);
+  std::fprintf(stderr, "%s\n", ProgressReporter::legend());
   std::printf("%8s %10s %10s %6s\n", "t (s)", "tip dx (m)", "tip dy (m)", "iter");
   ProgressReporter progress(o.end);
   std::size_t frame = 0;
@@ -136,7 +103,23 @@ int run_scheme(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) try {
-  const Options o = parse(argc, argv);
+  Options o;
+  mpsfsi_examples::CaseOptions cli("elastic_gate", "Dam break through an elastic gate (Antoci, Gallati & Sibilla 2007)");
+  using mpsfsi_examples::one_of;
+  using mpsfsi_examples::positive;
+  cli.add("--dim", o.dim, "dimension (3: the 2D case extruded 0.02 m between side walls)")->check(one_of({"2", "3"}));
+  cli.add("--l0", o.l0, "particle spacing; 0: 0.001 in 2D, 0.0025 in 3D", "m")->check(mpsfsi_examples::non_negative());
+  cli.add("--end", o.end, "end time", "s")->check(positive());
+  cli.add("--every", o.every, "interval between snapshots", "s")->check(positive());
+  cli.add("--scheme", o.scheme, "coupling scheme: sub-iterated (Aitken) or explicit")->check(one_of({"iterated", "explicit"}));
+  cli.add("--tolerance", o.tolerance, "sub-iterations' convergence: relative change of the interface load")->check(positive());
+  cli.add("--plane", o.plane, "2D plane model of the gate")->check(one_of({"strain", "stress"}));
+  cli.add("--out", o.out, "output folder");
+  if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
+  if (o.l0 == 0) o.l0 = o.dim == 2 ? 0.001 : 0.0025;
+  if (cli.print_case_if_requested()) return 0;
+  std::filesystem::create_directories(o.out);
+  cli.write_case(o.out);
   return o.dim == 2 ? run_scheme<2>(o) : run_scheme<3>(o);
 } catch (const mpsfsi::SimulationError& e) {
   std::fprintf(stderr, "elastic_gate: %s\n(the last good snapshot is the last one in the .pvd files)\n", e.what());

@@ -1,42 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Hydrostatic water column on a clamped elastic plate (Fourey et al. 2017; issue 6, verification
-// 1), 2D plane strain: water 1 m x 2 m on an aluminium plate 1 m x 0.05 m clamped at both ends.
-// Analytic mid-span deflection (Euler-Bernoulli) 6.43e-5 m under the water load alone (the plate's
-// own weight is off here). Two modes:
+// Hydrostatic water column on a clamped elastic plate (Fourey et al. 2017), 2D plane strain:
+// water 1 m x 2 m on an aluminium plate 1 m x 0.05 m clamped at both ends. Analytic mid-span
+// deflection (Euler-Bernoulli) 6.43e-5 m under the water load alone (the plate's own weight is
+// off here). Two modes:
 //   coupled  the water and the plate through FsiCoupler (the verification case);
 //   alone    the plate alone under the exact hydrostatic load rho g H on its top surface: the
 //            plate's own discretisation error, without the fluid, for a convergence study.
 // The plate's velocity is damped (mass-proportional, --damping) to reach the static state; the
-// deflection is averaged over the last --window seconds. Writes midspan.csv (t, deflection,
-// load / water weight) and VTU/PVD of the plate (and the fluid when coupled).
-//
-// --ppe amg solves the fluid's pressure Poisson equation with BoomerAMG-preconditioned CG
-// (HypreAmgCg) instead of the default SsorCg: needed at fine resolution, where the 2 m column's
-// PPE takes SsorCg thousands of iterations. Available when the build found hypre.
-//
-// --max-dt s lets the fluid choose its step (Courant and viscous limits) up to s instead of the
-// fixed --dt. While the load comes on, the water in the two bottom corners (side wall against
-// clamped plate) is drawn into them, faster the finer the resolution (about 1 m/s at h/l0 = 24),
-// and sets the automatic step; a step that changes from one step to the next makes the load
-// jump (README), so the fixed --dt is the default.
-// --require p makes the run fail (exit code 3) when the averaged deflection is further than p %
-// from the analytic one.
-// --covered on|off switches CouplingParameters::covered_surface_as_dummy (README).
-// --sub-tolerance r is SubIterated's convergence test, |r| <= r |F| on the interface load
-// (default 1e-3). In this quasi-static case 1e-2 gives the same averaged deflection (h/l0 = 8:
-// 7.0031e-5 against 7.0040e-5 m) with 3-4 sub-iterations a step instead of 9-10.
-// --clamp-columns n sets how far (in layers) the clamped plate runs into the side walls and how
-// thick the walls are (the scene's default 5). The plate's end faces are structure surface,
-// hence free-surface (P = 0) rows of the PPE; at 3 layers they lie within the Laplacian's reach
-// (3.1 l0) of the corner wall particles and lower their pressure, which draws the corner water
-// in (README).
-//
-//   hydrostatic_plate [--mode coupled|alone] [--l0 m] [--end s] [--window s] [--dt s]
-//                     [--max-dt s] [--damping 1/s] [--ppe ssor|amg]
-//                     [--require %] [--clamp-columns n] [--covered on|off]
-//                     [--sub-tolerance r] [--out dir]
-//   hydrostatic_plate --analyse midspan.csv [--l0 m] [--end s] [--window s] [--require %]
-//                     reports the averages of an earlier run from its CSV (--l0 and --end as run)
+// settled deflection is taken over the last --window seconds (docs/validation/fsi.md says how).
+// Writes midspan.csv (t, deflection, load / water weight) and VTU/PVD of the plate (and the
+// fluid when coupled); `--analyse midspan.csv` reports the averages of an earlier run from its
+// CSV instead of running. `hydrostatic_plate --help` lists the options.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -62,6 +36,8 @@
 #include <mpsfsi/fluid/hypre_amg.hpp>
 #endif
 
+#include "common/case_options.hpp"
+
 using namespace mpsfsi;
 
 namespace {
@@ -78,60 +54,11 @@ struct Options {
   std::string ppe = "ssor";  // the PPE's linear solver: ssor (SsorCg) or amg (HypreAmgCg)
   double require = -1;       // %, the largest accepted |deflection error| (none if negative)
   int clamp_columns = 0;     // the clamp's and the side walls' depth in layers (0: the scene's)
-  bool covered = true;       // CouplingParameters::covered_surface_as_dummy
+  std::string covered = "on";  // CouplingParameters::covered_surface_as_dummy
   double sub_tolerance = SubIterated{}.tolerance;  // the sub-iterations' relative load residual
   std::string out = "out/hydrostatic_plate";
   std::string analyse;       // a midspan.csv of an earlier run: report its averages, run nothing
 };
-
-[[noreturn]] void usage(int code) {
-  std::fprintf(stderr,
-               "usage: hydrostatic_plate [--mode coupled|alone] [--l0 m] [--end s] [--window s] [--dt s] [--max-dt s]\n"
-               "                         [--damping 1/s] [--every s] [--ppe ssor|amg] [--require %%]\n"
-               "                         [--clamp-columns n] [--covered on|off] [--sub-tolerance r] [--out dir]\n"
-               "       hydrostatic_plate --analyse midspan.csv [--l0 m] [--end s] [--window s] [--require %%]\n");
-  std::exit(code);
-}
-
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int a = 1; a < argc; ++a) {
-    const std::string key = argv[a];
-    if (key == "--help") usage(0);
-    if (a + 1 >= argc) usage(2);
-    const std::string v = argv[++a];
-    if (key == "--mode") o.mode = v;
-    else if (key == "--l0") o.l0 = std::stod(v);
-    else if (key == "--end") o.end = std::stod(v);
-    else if (key == "--window") o.window = std::stod(v);
-    else if (key == "--dt") o.dt = std::stod(v);
-    else if (key == "--max-dt") o.max_dt = std::stod(v);
-    else if (key == "--damping") o.damping = std::stod(v);
-    else if (key == "--every") o.every = std::stod(v);
-    else if (key == "--ppe") o.ppe = v;
-    else if (key == "--require") o.require = std::stod(v);
-    else if (key == "--clamp-columns") o.clamp_columns = std::stoi(v);
-    else if (key == "--covered") o.covered = v == "on" ? true : v == "off" ? false : (usage(2), false);
-    else if (key == "--sub-tolerance") o.sub_tolerance = std::stod(v);
-    else if (key == "--out") o.out = v;
-    else if (key == "--analyse") o.analyse = v;
-    else {
-      std::fprintf(stderr, "hydrostatic_plate: unknown option %s\n", key.c_str());
-      usage(2);
-    }
-  }
-  if ((o.mode != "coupled" && o.mode != "alone") || !(o.end > 0) || !(o.window > 0 && o.window < o.end) ||
-      !(o.dt > 0) || !(o.max_dt >= 0) || !(o.damping >= 0) || !(o.every > 0) || (o.ppe != "ssor" && o.ppe != "amg") ||
-      o.clamp_columns < 0 || !(o.sub_tolerance > 0))
-    usage(2);
-#ifndef MPSFSI_EXAMPLE_HYPRE
-  if (o.ppe == "amg") {
-    std::fprintf(stderr, "hydrostatic_plate: --ppe amg needs hypre, which this build did not find (Debian: libhypre-dev)\n");
-    std::exit(2);
-  }
-#endif
-  return o;
-}
 
 SolidParameters<2> plate_parameters(const scenes::HydrostaticPlate& scene, const Options& o) {
   SolidParameters<2> p;
@@ -148,7 +75,7 @@ SolidParameters<2> plate_parameters(const scenes::HydrostaticPlate& scene, const
 // The deflection at the end of the run. The coupled plate still rings there: the water column's
 // own mode (period 13 ms, decaying at about 40 1/s) moves the deflection by +-10 % at 40-60 ms at
 // h/l0 = 24, so a plain mean over a window of 1.5 periods is off by about 1 %, by more or less
-// with the window's phase (README). The settled deflection is therefore taken from a least-squares
+// with the window's phase (docs/validation/fsi.md). The settled deflection is therefore taken from a least-squares
 // fit of a damped oscillation about a constant over the window,
 //   w(t) = w_s + e^(-lambda (t - t0)) (a cos(omega t) + b sin(omega t)),
 // linear in (w_s, a, b) for given (lambda, omega), which are searched on a grid (lambda 0-200 1/s,
@@ -289,7 +216,7 @@ int run_coupled(const scenes::HydrostaticPlate& scene, const Options& o) {
   fp.dt = o.max_dt > 0 ? 0.0 : o.dt;
   fp.max_dt = o.max_dt;
   CouplingParameters cp;
-  cp.covered_surface_as_dummy = o.covered;
+  cp.covered_surface_as_dummy = o.covered == "on";
   SubIterated scheme;
   scheme.tolerance = o.sub_tolerance;
   FsiCoupler<Fluid, ElasticSolver<2>, SubIterated> coupler(scene.fluid_particles(o.l0), fp, std::move(plate), cp, scheme);
@@ -358,7 +285,49 @@ int analyse(const scenes::HydrostaticPlate& scene, const Options& o) {
 }
 
 int main(int argc, char** argv) try {
-  const Options o = parse(argc, argv);
+  Options o;
+  mpsfsi_examples::CaseOptions cli("hydrostatic_plate",
+                                   "Hydrostatic water column on a clamped elastic plate (Fourey et al. 2017)");
+  using mpsfsi_examples::one_of;
+  using mpsfsi_examples::positive;
+  cli.add("--mode", o.mode, "the water and the plate coupled, or the plate alone under rho g H")
+      ->check(one_of({"coupled", "alone"}));
+  cli.add("--l0", o.l0, "particle spacing (the plate is 0.05 m thick)", "m")->check(positive());
+  cli.add("--end", o.end, "end time", "s")->check(positive());
+  cli.add("--window", o.window, "averaging window at the end of the run (shorter than --end)", "s")->check(positive());
+  cli.add("--dt", o.dt, "the fluid's (coupling) time step", "s")->check(positive());
+  cli.add("--max-dt", o.max_dt, "when > 0: automatic fluid step (Courant and viscous limits) capped at this", "s")
+      ->check(mpsfsi_examples::non_negative());
+  cli.add("--damping", o.damping, "mass-proportional damping of the plate's velocity", "1/s")
+      ->check(mpsfsi_examples::non_negative());
+  cli.add("--every", o.every, "interval between snapshots", "s")->check(positive());
+  cli.add("--ppe", o.ppe, "the PPE's linear solver: SSOR-CG, or BoomerAMG-CG (needs hypre)")->check(one_of({"ssor", "amg"}));
+  cli.add("--require", o.require, "fail (exit code 3) when |deflection error| exceeds this; negative: no check", "%");
+  cli.add("--clamp-columns", o.clamp_columns, "layers of the clamp and the side walls; 0: the scene's (5)")
+      ->check(CLI::Range(0, 100));
+  cli.add("--covered", o.covered, "covered structure surface joins the fluid as dummies (CouplingParameters)")
+      ->check(one_of({"on", "off"}));
+  cli.add("--sub-tolerance", o.sub_tolerance, "sub-iterations' convergence: |r| <= tolerance |F| on the interface load")
+      ->check(positive());
+  cli.add("--out", o.out, "output folder");
+  cli.add("--analyse", o.analyse, "a midspan.csv of an earlier run: report its averages (with that run's --l0, --end) "
+                                  "and run nothing");
+  if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
+  if (!(o.window < o.end)) {
+    std::fprintf(stderr, "hydrostatic_plate: --window (%g s) must be shorter than --end (%g s)\n", o.window, o.end);
+    return 2;
+  }
+#ifndef MPSFSI_EXAMPLE_HYPRE
+  if (o.ppe == "amg") {
+    std::fprintf(stderr, "hydrostatic_plate: --ppe amg needs hypre, which this build did not find (Debian: libhypre-dev)\n");
+    return 2;
+  }
+#endif
+  if (cli.print_case_if_requested()) return 0;
+  if (o.analyse.empty()) {
+    std::filesystem::create_directories(o.out);
+    cli.write_case(o.out);
+  }
   scenes::HydrostaticPlate scene;
   if (o.clamp_columns > 0) scene.clamp_columns = o.clamp_columns;
   if (!o.analyse.empty()) return analyse(scene, o);

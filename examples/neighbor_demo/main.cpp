@@ -2,9 +2,7 @@
 // Demo of mpsfsi's foundation on a 2D water column: neighbour search (cell list and kd-tree),
 // number density and free-surface flags, the standard and the Khayyer-Gotoh corrected gradient
 // of the hydrostatic pressure, and the Laplacian. Writes a VTU (+ PVD) for ParaView and a CSV
-// of the operator errors.
-//
-//   neighbor_demo [--l0 0.005] [--jitter 0.1] [--out out/neighbor_demo]
+// of the operator errors. `neighbor_demo --help` lists the options.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +10,8 @@
 #include <string>
 
 #include <mpsfsi/mpsfsi.hpp>
+
+#include "common/case_options.hpp"
 
 using namespace mpsfsi;
 
@@ -23,28 +23,6 @@ struct Options {
   std::string out = "out/neighbor_demo";
 };
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int a = 1; a < argc; ++a) {
-    const std::string key = argv[a];
-    auto value = [&]() -> std::string {
-      if (a + 1 >= argc) {
-        std::fprintf(stderr, "neighbor_demo: %s needs a value\n", key.c_str());
-        std::exit(2);
-      }
-      return argv[++a];
-    };
-    if (key == "--l0") o.l0 = std::stod(value());
-    else if (key == "--jitter") o.jitter = std::stod(value());
-    else if (key == "--out") o.out = value();
-    else {
-      std::fprintf(stderr, "usage: neighbor_demo [--l0 m] [--jitter fraction] [--out dir]\n");
-      std::exit(key == "--help" ? 0 : 2);
-    }
-  }
-  return o;
-}
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -52,7 +30,14 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 int main(int argc, char** argv) try {
-  const Options opt = parse(argc, argv);
+  Options opt;
+  mpsfsi_examples::CaseOptions cli("neighbor_demo", "Neighbour search and MPS operators on a 2D water column");
+  cli.add("--l0", opt.l0, "particle spacing", "m")->check(mpsfsi_examples::positive());
+  cli.add("--jitter", opt.jitter, "random displacement of each particle, as a fraction of l0 (at most 0.45: no two particles meet)")
+      ->check(CLI::Range(0.0, 0.45));
+  cli.add("--out", opt.out, "output folder");
+  if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
+  if (cli.print_case_if_requested()) return 0;
   const double width = 0.25, height = 0.5, rho = 1000.0, g = 9.81;
   const double re = 2.1 * opt.l0, re_lap = 3.1 * opt.l0;
 
@@ -135,6 +120,7 @@ int main(int argc, char** argv) try {
   std::printf("  lap p (exact 0)     max |lap p| l0 / (rho g) = %.3e\n", err_lap);
 
   std::filesystem::create_directories(opt.out);
+  cli.write_case(opt.out);
   const std::string vtu = numbered_file_name("water", 0);
   write_vtu(opt.out + "/" + vtu, water);
   PvdWriter pvd(opt.out + "/water.pvd");

@@ -3,8 +3,7 @@
 // E = 2 MPa, nu = 0.3975, rho = 1000 kg/m3 sticks out of a clamp and starts with the first-mode
 // velocity profile (tip speed 0.01 c0). Writes VTU/PVD snapshots, a CSV of the tip displacement
 // and the energies, and prints the measured period against the analytic 0.254 s (plane strain).
-//
-//   oscillating_plate [--dim 2|3] [--layers H/l0] [--periods n] [--every s] [--model corrected|paper] [--out dir]
+// `oscillating_plate --help` lists the options.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,6 +18,8 @@
 #include <mpsfsi/scenes/oscillating_plate.hpp>
 #include <mpsfsi/solid/elastic_solver.hpp>
 
+#include "common/case_options.hpp"
+
 using namespace mpsfsi;
 
 namespace {
@@ -31,35 +32,6 @@ struct Options {
   std::string model = "corrected";
   std::string out = "out/oscillating_plate";
 };
-
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int a = 1; a < argc; ++a) {
-    const std::string key = argv[a];
-    if (key == "--help" || a + 1 >= argc) {
-      std::fprintf(stderr,
-                   "usage: oscillating_plate [--dim 2|3] [--layers H/l0] [--periods n] [--every s] "
-                   "[--model corrected|paper] [--out dir]\n");
-      std::exit(key == "--help" ? 0 : 2);
-    }
-    const std::string v = argv[++a];
-    if (key == "--dim") o.dim = std::stoi(v);
-    else if (key == "--layers") o.layers = std::stoi(v);
-    else if (key == "--periods") o.periods = std::stod(v);
-    else if (key == "--every") o.every = std::stod(v);
-    else if (key == "--model") o.model = v;
-    else if (key == "--out") o.out = v;
-    else {
-      std::fprintf(stderr, "oscillating_plate: unknown option %s\n", key.c_str());
-      std::exit(2);
-    }
-  }
-  if ((o.dim != 2 && o.dim != 3) || o.layers < 2 || !(o.periods > 0) || (o.model != "corrected" && o.model != "paper")) {
-    std::fprintf(stderr, "oscillating_plate: need --dim 2|3, --layers >= 2, --periods > 0, --model corrected|paper\n");
-    std::exit(2);
-  }
-  return o;
-}
 
 template <int Dim, class Policies>
 int run(const Options& o) {
@@ -81,6 +53,7 @@ int run(const Options& o) {
   std::printf("oscillating plate %dD (%s model): %zu particles, H/l0 = %d, dt = %.3g s, analytic T = %.5f s%s\n", Dim,
               Policies::stress_model::name, solver.particles().size(), o.layers, solver.dt(), period,
               Dim == 2 ? " (plane strain)" : " (3D bar)");
+  std::fprintf(stderr, "%s\n", ProgressReporter::legend());
   const double y0 = solver.particles().positions()[tip][1];
   std::vector<double> crossings;
   double previous = 0, next_output = 0;
@@ -109,7 +82,7 @@ int run(const Options& o) {
     const double measured = 2 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
     std::printf("period %.5f s against %.5f s: %+.2f %%\n", measured, period, 100 * (measured / period - 1));
   }
-  std::printf("wrote %s/oscillating_plate.pvd and .csv; plot with /usr/bin/python3 examples/oscillating_plate/plot.py %s\n",
+  std::printf("wrote %s/oscillating_plate.pvd and .csv; plot with python3 examples/oscillating_plate/plot.py %s\n",
               o.out.c_str(), o.out.c_str());
   return 0;
 }
@@ -117,7 +90,21 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) try {
-  const Options o = parse(argc, argv);
+  Options o;
+  mpsfsi_examples::CaseOptions cli("oscillating_plate",
+                                   "Oscillating clamped plate in its first mode (Gray, Monaghan & Swift 2001)");
+  cli.add("--dim", o.dim, "dimension (3: a bar of square section)")->check(mpsfsi_examples::one_of({"2", "3"}));
+  cli.add("--layers", o.layers, "particles across the thickness H (H/l0), at least 2")
+      ->check(CLI::Range(2, 1000));
+  cli.add("--periods", o.periods, "simulated time in analytic periods")->check(mpsfsi_examples::positive());
+  cli.add("--every", o.every, "interval between snapshots", "s")->check(mpsfsi_examples::positive());
+  cli.add("--model", o.model, "stress model: corrected total Lagrangian or the paper's eqs 16-17")
+      ->check(mpsfsi_examples::one_of({"corrected", "paper"}));
+  cli.add("--out", o.out, "output folder");
+  if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
+  if (cli.print_case_if_requested()) return 0;
+  std::filesystem::create_directories(o.out);
+  cli.write_case(o.out);
   if (o.dim == 2) return o.model == "paper" ? run<2, PaperSolidPolicies<2>>(o) : run<2, SolidDefaults<2>>(o);
   return o.model == "paper" ? run<3, PaperSolidPolicies<3>>(o) : run<3, SolidDefaults<3>>(o);
 } catch (const mpsfsi::SimulationError& e) {

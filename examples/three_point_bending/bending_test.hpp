@@ -265,7 +265,10 @@ Result run(const IceBeamCase& c, const Options& o) {
   // deflects 13-20 % more than Table 1's, so it fails later than `expected` (3D case 02 at
   // l0 = 2 mm: about 1.4 expected, after which a 1.2 expected horizon sat at 100 % for 8 minutes).
   const double progress_horizon = 1.6 * expected;
-  if (o.progress) progress = std::make_unique<ProgressReporter>(progress_horizon);
+  if (o.progress) {
+    progress = std::make_unique<ProgressReporter>(progress_horizon);
+    progress->set_label("case " + c.name);
+  }
   auto snapshot = [&] {
     if (!pvd) return;
     const std::string file = numbered_file_name("case" + c.name, frame++);

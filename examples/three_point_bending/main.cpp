@@ -1,85 +1,71 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Three-point bending of ice beams with brittle fracture: the five cases of the paper's Table 1
-// (physics-notes section 6). E and sigma_f from Table 1 are the inputs; the simulated flexural
+// (docs/theory.md, section 6). E and sigma_f from Table 1 are the inputs; the simulated flexural
 // strain 6 h dd / L^2 at the peak load is compared with the experiment's. Writes, per case, a CSV
 // of load, deflection and the horizontal stress at the top and bottom of mid-span against time
 // (the paper's Fig 6), the final particles with damage (crack path, Fig 5), VTU/PVD snapshots,
-// and a summary CSV; plot.py renders the PNGs (Figs 5-7).
-//
-//   three_point_bending [--case all|02|03|04|05|10] [--dim 2|3] [--l0 m] [--speed m/s]
-//                       [--plane stress|strain] [--point-stress] [--centre-stress] [--out dir] [--no-output]
+// and a summary CSV; plot.py renders the PNGs (Figs 5-7). `three_point_bending --help` lists the
+// options.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
 #include "bending_test.hpp"
+#include "common/case_options.hpp"
 
 namespace {
 
 struct Options {
   std::string which = "all";
   int dim = 2;
+  std::string plane = "stress";
+  bool point_stress = false, centre_stress = false, no_output = false;
   bending::Options run;
 };
-
-Options parse(int argc, char** argv) {
-  Options o;
-  o.run.out = "out/three_point_bending";
-  for (int a = 1; a < argc; ++a) {
-    const std::string key = argv[a];
-    if (key == "--no-output") {
-      o.run.out.clear();
-      continue;
-    }
-    if (key == "--point-stress") {  // the criterion reads each particle's own stress
-      o.run.average_failure_stress = false;
-      continue;
-    }
-    if (key == "--centre-stress") {  // the criterion reads the stress at particle centres
-      o.run.failure_stress_at_surface = false;
-      continue;
-    }
-    if (key == "--help" || a + 1 >= argc) {
-      std::fprintf(stderr,
-                   "usage: three_point_bending [--case all|02|03|04|05|10] [--dim 2|3] [--l0 m] [--speed m/s] "
-                   "[--plane stress|strain] [--point-stress] [--centre-stress] [--out dir] [--no-output]\n");
-      std::exit(key == "--help" ? 0 : 2);
-    }
-    const std::string v = argv[++a];
-    if (key == "--case") o.which = v;
-    else if (key == "--dim") o.dim = std::stoi(v);
-    else if (key == "--l0") o.run.l0 = std::stod(v);
-    else if (key == "--speed") o.run.speed = std::stod(v);
-    else if (key == "--plane") o.run.plane_model = v == "strain" ? mpsfsi::PlaneModel::plane_strain : mpsfsi::PlaneModel::plane_stress;
-    else if (key == "--out") o.run.out = v;
-    else if (key == "--contact-damping") o.run.contact_damping = std::stod(v);
-    else {
-      std::fprintf(stderr, "three_point_bending: unknown option %s\n", key.c_str());
-      std::exit(2);
-    }
-  }
-  if (o.dim != 2 && o.dim != 3) {
-    std::fprintf(stderr, "three_point_bending: --dim must be 2 or 3\n");
-    std::exit(2);
-  }
-  return o;
-}
 
 }  // namespace
 
 int main(int argc, char** argv) try {
-  Options o = parse(argc, argv);
-  o.run.progress = o.dim == 3;
+  Options o;
+  o.run.out = "out/three_point_bending";
+  mpsfsi_examples::CaseOptions cli("three_point_bending",
+                                   "Three-point bending of the ice beams of the paper's Table 1, with brittle fracture");
+  using mpsfsi_examples::one_of;
+  using mpsfsi_examples::positive;
+  cli.add("--case", o.which, "which case of Table 1")->check(one_of({"all", "02", "03", "04", "05", "10"}));
+  cli.add("--dim", o.dim, "dimension")->check(one_of({"2", "3"}));
+  cli.add("--l0", o.run.l0, "target particle spacing (the beam height is made a whole number of spacings)", "m")
+      ->check(positive());
+  cli.add("--speed", o.run.speed, "indenter speed, reached after a smooth ramp", "m/s")->check(positive());
+  cli.add("--plane", o.plane, "2D plane model")->check(one_of({"stress", "strain"}));
+  cli.flag("--point-stress", o.point_stress, "the criterion reads each particle's own stress (not averaged over its bonds)");
+  cli.flag("--centre-stress", o.centre_stress, "the criterion reads the stress at particle centres (not at the surface)");
+  cli.add("--contact-damping", o.run.contact_damping, "damping ratio of the contact's normal dashpot")
+      ->check(mpsfsi_examples::non_negative());
+  cli.add("--out", o.run.out, "output folder");
+  cli.flag("--no-output", o.no_output, "write no files");
+  if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
+  if (cli.print_case_if_requested()) return 0;
+  o.run.plane_model = o.plane == "strain" ? mpsfsi::PlaneModel::plane_strain : mpsfsi::PlaneModel::plane_stress;
+  o.run.average_failure_stress = !o.point_stress;
+  o.run.failure_stress_at_surface = !o.centre_stress;
+  const std::string out = o.no_output ? std::string() : o.run.out;
+  o.run.out = out;
+  o.run.progress = true;
+
   std::printf("Three-point bending of ice beams (Table 1), %dD %s, l0 = %g m, indenter %g m/s, span 0.18 m\n", o.dim,
               o.dim == 3 ? "" : (o.run.plane_model == mpsfsi::PlaneModel::plane_stress ? "plane stress" : "plane strain"),
               o.run.l0, o.run.speed);
+  std::fprintf(stderr, "%s; the end time is 1.6 x the time at which the beam would reach Table 1's deflection\n",
+               mpsfsi::ProgressReporter::legend());
   std::printf("%4s %7s %7s %8s %8s | %9s %10s %9s %9s %8s | %6s %5s %7s %6s\n", "case", "E MPa", "sf MPa", "Pexp N",
               "ddexp mm", "Psim N", "dd@P mm", "eps_sim", "eps_exp", "error", "broken", "crack", "surface", "wall s");
   std::unique_ptr<mpsfsi::CsvWriter> summary;
-  if (!o.run.out.empty()) {
-    std::filesystem::create_directories(o.run.out);
+  if (!out.empty()) {
+    std::filesystem::create_directories(out);
+    cli.write_case(out);
     summary = std::make_unique<mpsfsi::CsvWriter>(
-        o.run.out + "/summary.csv",
+        out + "/summary.csv",
         std::vector<std::string>{"case", "E_Pa", "sigma_f_Pa", "P_exp_N", "dd_exp_m", "P_sim_N", "dd_sim_m",
                                  "bottom_dd_sim_m", "indenter_at_peak_m", "eps_sim", "eps_exp", "error", "broken", "crack_offset_m",
                                  "fracture_surface_offset_m", "wall_s"});
@@ -105,6 +91,7 @@ int main(int argc, char** argv) try {
     if (!r.broken)
       std::printf("     not in two pieces: %zu intact bonds stretched over 5 %%; without them the beam %s\n",
                   r.overstretched_bonds, r.broken_but_overstretched ? "is in two pieces" : "is still one piece");
+    std::fflush(stdout);
     if (summary)
       summary->row({std::stod(c.name), c.youngs_modulus(), c.tensile_strength(), c.peak_load, c.deflection, r.peak_load,
                     r.deflection_at_peak, r.bottom_deflection_at_peak, r.indenter_at_peak, r.flexural_strain, c.flexural_strain(), r.error(),
@@ -112,9 +99,9 @@ int main(int argc, char** argv) try {
   }
   std::printf("largest |error| %.2f %%, total wall time %.1f s on %d threads\n", 100 * worst, total,
               mpsfsi::parallel::max_threads());
-  if (!o.run.out.empty())
-    std::printf("wrote %s; plot with /usr/bin/python3 examples/three_point_bending/plot.py %s\n", o.run.out.c_str(),
-                o.run.out.c_str());
+  if (!out.empty())
+    std::printf("wrote %s (case.yaml reruns this case); plot with python3 examples/three_point_bending/plot.py %s\n",
+                out.c_str(), out.c_str());
   return 0;
 } catch (const mpsfsi::SimulationError& e) {
   std::fprintf(stderr, "three_point_bending: %s\n", e.what());

@@ -97,4 +97,21 @@ TEST_CASE("io.progress: durations read as seconds, minutes and hours") {
   CHECK(format_duration(-1.0) == "--");
 }
 
+TEST_CASE("io.progress: a label prefixes every line, and the legend names every column") {
+  double now = 0.0;
+  std::ostringstream out;
+  mpsfsi::ProgressReporter progress(1.0, 0.0, out, mpsfsi::ProgressMode::lines, [&now] { return now; });
+  progress.set_label("case 02");
+  progress.update(1, 0.5);
+  now = 1.0;
+  progress.update(2, 1.0);
+  progress.finish();
+  const auto lines = lines_of(out.str());
+  REQUIRE(lines.size() == 3);
+  for (const auto& line : lines) CHECK(line.rfind("case 02: ", 0) == 0);
+  CHECK(contains(lines[2], "case 02: done: step 2"));
+  const std::string legend = mpsfsi::ProgressReporter::legend();
+  for (const char* column : {"step", "simulated time", "percent", "wall time", "eta"}) CHECK(contains(legend, column));
+}
+
 }  // TEST_SUITE("io")

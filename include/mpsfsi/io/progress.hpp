@@ -125,7 +125,7 @@ class ProgressReporter {
       s << '\r' << line << pad(line.size()) << '\n';
     }
     const double wall = now - start_wall_;
-    s << "done: ";
+    s << label_ << "done: ";
     if (started_) {
       s << "step " << last_step_ << "  t " << last_time_ << " / " << end_time_ << "  wall "
         << detail::format_duration(wall);
@@ -143,6 +143,16 @@ class ProgressReporter {
 
   bool terminal() const { return terminal_; }
 
+  // A prefix for every line, naming what runs ("case 02: step 1200 ..."), when one program
+  // reports several runs in turn.
+  void set_label(std::string label) { label_ = label.empty() ? std::string() : std::move(label) + ": "; }
+
+  // What the columns of a report mean, for a program to print once before its first run.
+  static const char* legend() {
+    return "progress: step number, simulated time t / end time (percent done), wall time since the start, "
+           "estimated wall time left (eta)";
+  }
+
  private:
   // Local formatting, so the caller's stream flags and locale are left as they were.
   static std::ostringstream stream() {
@@ -154,7 +164,7 @@ class ProgressReporter {
   std::string report() const {
     std::ostringstream s = stream();
     const double percent = std::clamp(last_time_ / end_time_ * 100, 0.0, 100.0);
-    s << "step " << last_step_ << "  t " << last_time_ << " / " << end_time_;
+    s << label_ << "step " << last_step_ << "  t " << last_time_ << " / " << end_time_;
     s.precision(1);
     s << std::fixed << " (" << percent << "%)  wall "
       << detail::format_duration(last_wall_ - start_wall_) << "  eta ";
@@ -183,6 +193,7 @@ class ProgressReporter {
   double interval_;
   std::ostream* out_;
   WallClock clock_;
+  std::string label_;
   bool terminal_ = false;
   bool started_ = false;
   bool final_printed_ = false;
