@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// One whole FluidSolver step of the 2D dam break of issue 3's speed target: a 0.25 m x 0.5 m
+// One whole FluidSolver step of the 2D dam break (docs/performance.md): a 0.25 m x 0.5 m
 // water column in a 1 m x 0.6 m tank, l0 = 5 mm, dt = 2e-4 s, PPE relative residual 1e-8.
 // The solver is first run to t = 0.1 s (the column is collapsing); each benchmark iteration is
 // one step from there on. Arguments: /threads. Counters: particle-steps per second and the share

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// ElasticSolver throughput (issue 4): one whole step of a block of material with every particle
+// ElasticSolver throughput: one whole step of a block of material with every particle
 // free and the first-mode velocity field of a clamped plate (so every bond is stretched), in
 // bond evaluations per second: directed bonds (each pair counted from both ends) times steps.
 // Arguments: /particles along the long side/threads. Target: >= 2e8 bond evaluations per

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Three-point bending of an ice beam with brittle fracture (the paper's Table 1 protocol,
-// physics-notes section 6): E and sigma_f from Table 1 as inputs, nu = 0.3, 917 kg/m3, span
+// docs/theory.md, section 6): E and sigma_f from Table 1 as inputs, nu = 0.3, 917 kg/m3, span
 // 0.18 m on two rigid supports, a rigid indenter at mid-span driven down at constant speed.
 // Shared by examples/three_point_bending and the validation tests.
 #pragma once
@@ -26,7 +26,7 @@ namespace bending {
 
 // One row of the paper's Table 1: specimen width and height, measured peak load and mid-span
 // deflection at the peak. E (eq 36), sigma_f (eq 37) and the flexural strain (eq 38, read as
-// 6 h dd / L^2) follow, as recomputed in physics-notes section 6.
+// 6 h dd / L^2) follow, as recomputed in docs/theory.md, section 6.1.
 struct IceBeamCase {
   std::string name;
   double width = 0, height = 0, peak_load = 0, deflection = 0;

@@ -3,6 +3,7 @@
 #   cmake -DCOMMAND=<program;arg;...> -DEXPECT_CODE=<n> -DEXPECT=<regex> [-DONE_LINE=ON] -P check_command_line.cmake
 # EXPECT must match what the program printed (stdout and stderr together); with ONE_LINE the
 # program must print exactly one line on stderr (a bad command line is one clear line).
+cmake_minimum_required(VERSION 3.20)
 execute_process(COMMAND ${COMMAND} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
 set(printed "${out}${err}")
 if(NOT code STREQUAL "${EXPECT_CODE}")

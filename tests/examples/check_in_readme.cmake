@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Checks that a source file stands word for word in the README (inside a code block):
 #   cmake -DREADME=<README.md> -DSOURCE=<file.cpp> -P check_in_readme.cmake
+cmake_minimum_required(VERSION 3.20)
 file(READ "${README}" readme)
 file(READ "${SOURCE}" source)
 string(FIND "${readme}" "```cpp\n${source}```" at)

@@ -231,12 +231,13 @@ TEST_CASE("fluid.fluid_solver: wall particles move with the velocity they are gi
   CHECK(fluid_vx > 0.5 * v[0]);
 }
 
-// A lone free-surface particle driven into a wall particle: the situation that threw particles
-// off the end wall of the elastic-gate case at 8-12 m/s (README, "Dam break through an elastic
-// gate"). The pair's weight is large at 0.6 l0, the wall particle (its other neighbours all at
-// the free surface) takes the whole divergence impulse of eq 11 as pressure, and the gradient
-// hands it back to the particle in one step. Whatever the wall does, an impact must not create
-// kinetic energy: the particle may be stopped or reflected, not thrown back faster than it came.
+// A lone free-surface particle driven into a wall particle: the situation that throws particles off
+// the end wall of the elastic-gate case at 8-12 m/s when collisions act only below 0.5 l0
+// (docs/validation/fluid.md, collision distance). The pair's weight is large at 0.6 l0, the wall
+// particle (its other neighbours all at the free surface) takes the whole divergence impulse of
+// eq 11 as pressure, and the gradient hands it back to the particle in one step. Whatever the wall
+// does, an impact must not create kinetic energy: the particle may be stopped or reflected, not
+// thrown back faster than it came.
 namespace {
 double speed_after_wall_impact(double collision_distance_ratio) {
   const double l0 = 0.0025, v_in = 2.5;
@@ -263,8 +264,8 @@ TEST_CASE("fluid.fluid_solver: a lone particle driven into a wall is not thrown 
   MESSAGE("speed after the impact / before: " << with_default << " (default collision distance), "
                                               << at_half_spacing << " (collision below 0.5 l0 only)");
   CHECK(with_default <= 1.0);
-  // The case does reproduce the jet: with collisions only below 0.5 l0 (the default until
-  // session 11) the pressure impulse throws the particle back faster than it came.
+  // The case does reproduce the jet: with collisions only below 0.5 l0 (a value some derived codes
+  // use) the pressure impulse throws the particle back faster than it came.
   CHECK(at_half_spacing > 1.0);
 }
 

@@ -199,7 +199,7 @@ TEST_CASE("fsi.elastic_gate: the 3D extrusion is loaded along y, uniformly acros
   }
   INFO("layer means " << lo << " .. " << hi << " Pa; lower band " << low / n_low << ", upper band " << high / n_high);
   CHECK(lo > 0);
-  CHECK(hi - lo < 0.05 * hi);  // the wrong gravity gave layer means 0 .. 86 Pa
+  CHECK(hi - lo < 0.05 * hi);  // gravity along z (across the channel) gives layer means of 0 .. 86 Pa
   CHECK(low / n_low > high / n_high);
 }
 

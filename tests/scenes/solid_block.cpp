@@ -25,7 +25,9 @@ TEST_CASE("scenes.oscillating_plate: mode shape and period of Gray, Monaghan & S
   scenes::OscillatingPlate plate;
   CHECK(plate.mode(plate.length) == doctest::Approx(1.0).epsilon(1e-9));
   CHECK(plate.mode(0) == doctest::Approx(0.0));
-  // Reference values in ../shared/validation-data/solid_oscillating_plate_gms2001_analytic.csv.
+  // Reference values worked by hand from the formulas of Gray, Monaghan & Swift (2001) for
+  // E = 2 MPa, nu = 0.3975, rho = 1000 kg/m3: c0 = sqrt(E / (3 (1 - 2 nu) rho)), and the
+  // plane-strain thin-plate period (docs/validation/solid.md).
   CHECK(plate.c0() == doctest::Approx(57.0266).epsilon(1e-5));
   CHECK(plate.period(true) == doctest::Approx(0.25403).epsilon(1e-4));
   std::vector<std::size_t> clamped;

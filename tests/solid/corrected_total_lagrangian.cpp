@@ -282,7 +282,9 @@ TEST_CASE_TEMPLATE("solid.stress_models: patch test, uniform uniaxial stress in 
     if (X[0] > 0.05 && X[0] < 0.15) worst_force = std::max(worst_force, f[i].norm() / (e * eps * 0.01));
   }
   MESSAGE(std::string(Model::name) << ": interior stress error " << worst_stress << ", residual force / (sigma l0) " << worst_force);
-  CHECK(worst_stress < 0.01);  // issue 4, verification 4: within 1 %
+  // 1 % of the analytic uniform stress; both models measure 1.9e-5, the St Venant-Kirchhoff law's
+  // own nonlinearity at this strain (docs/validation/solid.md).
+  CHECK(worst_stress < 0.01);
   // The corrected model is in equilibrium under uniform stress, free surfaces included, up to
   // the St Venant-Kirchhoff law's own nonlinearity (sigma_yy = O(eps^2) E, i.e. 1e-5 relative).
   if constexpr (std::is_same_v<Model, CorrectedTotalLagrangian<2>>) CHECK(worst_force < 1e-4);

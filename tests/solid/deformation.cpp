@@ -103,12 +103,12 @@ TEST_CASE("solid.deformation: a particle whose bonds span one direction stays un
   CHECK(f.allFinite());
 }
 
-// The l0 = 1 mm bending beam shattered because of this configuration (README): cutting left a
-// particle beside the crack with one strong bond and one long weak bond (w(2 l0) = 0.05 against
-// w(sqrt 2 l0) = 0.49) that spans the opening crack. Two bonds determine a linear fit exactly, so
-// least squares read the weak bond's 25 % shear at face value; the floor on weak directions
-// (kWeakDirectionFloor = 1/4 of the intact neighbourhood's strongest eigenvalue) bounds every
-// bond's coefficient by beta |r0| / (lambda_ref / 4).
+// Without the weak-direction floor the l0 = 1 mm bending beam shatters because of this configuration
+// (docs/validation/fracture.md): cutting leaves a particle beside the crack with one strong bond and
+// one long weak bond (w(2 l0) = 0.05 against w(sqrt 2 l0) = 0.49) that spans the opening crack. Two
+// bonds determine a linear fit exactly, so least squares read the weak bond's 25 % shear at face
+// value; the floor on weak directions (kWeakDirectionFloor = 1/4 of the intact neighbourhood's
+// strongest eigenvalue) bounds every bond's coefficient by beta |r0| / (lambda_ref / 4).
 TEST_CASE("solid.deformation: a thinned neighbourhood reads a long weak bond across a crack softly") {
   const double l0 = 0.01;
   Block<2> block(l0);

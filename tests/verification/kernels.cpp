@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Verification of the MPS operators against analytic fields (physics-notes section 1).
+// Verification of the MPS operators against analytic fields (docs/theory.md, section 1).
 // Tolerances: "round-off" checks use 1e-10 relative to the field's scale: each sum has at most a
 // few hundred terms of size O(1) in units of the field, so double rounding stays below ~1e-13;
 // 1e-10 leaves room for the cancellation in phi_j - phi_i and still fails on any O(l0) error.

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Verification of ElasticSolver (issue 4): vibration, static bending, rigid motion. Every case
-// runs with the default (corrected total-Lagrangian) model and, in the "both models" cases,
-// with the paper's model too; the figures are printed side by side and quoted in the README.
+// Verification of ElasticSolver: vibration, static bending, rigid motion. Every case runs with
+// the default (corrected total-Lagrangian) model and, in the "both models" cases, with the paper's
+// model too; the figures are printed side by side. docs/validation/solid.md lists them with the
+// source of each tolerance.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -25,8 +26,8 @@ struct PlateResult {
   std::size_t particles = 0;
 };
 
-// Gray, Monaghan & Swift (2001) plate; reference ../shared/validation-data/
-// solid_oscillating_plate_gms2001_analytic.csv (T = 0.25403 s plane strain, H = 0.02 m, vf = 0.01).
+// Gray, Monaghan & Swift (2001) plate; reference: the analytic thin-plate period of
+// scenes::OscillatingPlate (T = 0.25403 s plane strain, H = 0.02 m, vf = 0.01).
 template <int Dim, class Policies>
 PlateResult run_plate(int layers, double periods) {
   scenes::OscillatingPlate plate;
@@ -173,8 +174,12 @@ TEST_CASE("oscillating plate 2D at H/l0 = 10 over ten periods") {
   MESSAGE("plate 2D H/l0=10 (" << r.particles << " particles): T = " << r.period << " s vs " << reference
                                 << " s (" << 100 * (r.period / reference - 1) << " %), energy drift "
                                 << 100 * r.energy_drift << " %, tip amplitude " << r.amplitude << " m");
-  CHECK(test::within_relative(r.period, reference, 0.03));  // issue 4: within 3 % of GMS2001
-  CHECK(r.energy_drift <= 0.01);                            // issue 4: drift <= 1 % over 10 periods
+  // 3 %: the analytic period plus the first-order clamp error at H/l0 = 10 (convergence study:
+  // +6.2, +2.8, +1.5 % at H/l0 = 5, 10, 20; docs/validation/solid.md).
+  CHECK(test::within_relative(r.period, reference, 0.03));
+  // 1 %: energy conservation. Velocity Verlet is symplectic and the forces are the exact gradient
+  // of the discrete energy, so only the integrator's bounded error remains (measured <= 1e-6).
+  CHECK(r.energy_drift <= 0.01);
 }
 
 TEST_CASE("oscillating plate 3D bar at coarse resolution") {
@@ -183,30 +188,36 @@ TEST_CASE("oscillating plate 3D bar at coarse resolution") {
   const auto r = run_plate<3, SolidDefaults<3>>(6, 1.6);
   MESSAGE("bar 3D H/l0=6 (" << r.particles << " particles): T = " << r.period << " s vs " << reference << " s ("
                             << 100 * (r.period / reference - 1) << " %)");
-  CHECK(test::within_relative(r.period, reference, 0.05));  // issue 4: within 5 % at coarse resolution
+  // 5 %: the analytic period, with more room than the 2D plate's 3 % at this coarse H/l0 = 6 (the
+  // 2D clamp error is +6.2 % at 5 and +2.8 % at 10 particles across); measured +4.45 %.
+  CHECK(test::within_relative(r.period, reference, 0.05));
 }
 
 TEST_CASE("cantilever under a tip load against Timoshenko beam theory") {
   // h/l0 = 20: the error converges at first order from the clamp (the kinematic constraint acts
   // at the last clamped particle's centre, l0/2 behind the clamp face): 10.1 % at h/l0 = 5,
-  // 3.8 % at 10, 1.5 % at 20 (validation.solid, README).
+  // 3.8 % at 10, 1.5 % at 20 (validation.solid; docs/validation/solid.md).
   const auto [sim, theory] = run_cantilever<SolidDefaults<2>>(20);
   MESSAGE("cantilever L/h=10 h/l0=20 plane stress: tip deflection " << sim << " m vs Timoshenko " << theory << " m ("
                                                             << 100 * (sim / theory - 1) << " %)");
-  CHECK(test::within_relative(sim, theory, 0.03));  // issue 4: within 3 %
+  CHECK(test::within_relative(sim, theory, 0.03));  // 3 %: Timoshenko, above the +1.5 % clamp error at h/l0 = 20
 }
 
 TEST_CASE("simply supported beam of case 02 against Timoshenko beam theory") {
   const auto [sim, theory] = run_simply_supported<SolidDefaults<2>>();
   MESSAGE("simply supported case 02 plane stress: P/delta " << sim << " N/m/m vs Timoshenko " << theory << " ("
                                                             << 100 * (sim / theory - 1) << " %)");
-  CHECK(test::within_relative(sim, theory, 0.05));  // issue 4: within 5 %
+  // 5 %: Timoshenko's stiffness with shear (kappa = 5/6), the accuracy expected of the method for
+  // this deep beam (L/h = 4.7) on point supports under a point load; measured +1.65 %.
+  CHECK(test::within_relative(sim, theory, 0.05));
 }
 
 TEST_CASE("rigid spin through 90 degrees stays unstressed") {
   const double worst = run_rigid_spin<SolidDefaults<2>>();
   MESSAGE("rigid spin: max |sigma|/E = " << worst);
-  CHECK(worst < 1e-6);  // issue 4, verification 3
+  // Rigid motion is stress-free. 1e-6 E is 20-50 times the true centrifugal stress rho omega^2 R^2
+  // and far below the order-E stress of a rotation read as strain; measured 2.6e-8 E.
+  CHECK(worst < 1e-6);
 }
 
 }
@@ -261,7 +272,9 @@ TEST_CASE("paper model and corrected model side by side") {
                 100 * (cant_p.first / cant_p.second - 1), 100 * (ss_c.first / ss_c.second - 1),
                 100 * (ss_p.first / ss_p.second - 1), spin_c, spin_p);
   MESSAGE(table);
-  // The default must be the better model on every check the issue names (README).
+  // The corrected model is the default because it is the better one: its cantilever error may exceed
+  // the paper model's by at most 0.5 %, and its energy drift may not exceed the paper model's
+  // (measured +1.53 against +4.75 %, and <= 1e-6 against 11 %; docs/validation/solid.md).
   CHECK(std::abs(cant_c.first / cant_c.second - 1) <= std::abs(cant_p.first / cant_p.second - 1) + 0.005);
   CHECK(plate_c.energy_drift <= plate_p.energy_drift);
 }

@@ -22,7 +22,7 @@ enum class NegativePressure { clamp_to_zero, keep };
 enum class EnclosedRegion { error, zero_pressure };
 
 // Physical and numerical parameters of FluidSolver. Lengths in m, times in s, SI throughout.
-// Radii are given as multiples of l0 (physics-notes section 1: KO96 use 2.1 l0 for density and
+// Radii are given as multiples of l0 (docs/theory.md, section 1.2: KO96 use 2.1 l0 for density and
 // gradient, 4.0 l0 for the Laplacian; a widely used open code 2.1 / 3.1).
 template <int Dim, class Scalar = double>
 struct FluidParameters {

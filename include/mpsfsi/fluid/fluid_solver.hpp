@@ -37,7 +37,8 @@ template <int Dim>
 struct FluidDefaults {
   using weight = KoshizukaWeight;
   using gradient_correction = KhayyerGotohCorrection<Dim, double>;
-  // SSOR-CG: 2-4x faster than Jacobi-CG on the PPE from 5e3 to 1e5 unknowns, 2D and 3D (README).
+  // SSOR-CG: 1.5-3.8x faster than Jacobi-CG on PPEs of 1e4 and 1e5 unknowns, 2D and 3D
+  // (docs/performance.md).
   using linear_solver = SsorCg;
   using free_surface = NumberDensitySurface;
   using collision = KoshizukaCollision;

@@ -11,8 +11,9 @@
 
 namespace mpsfsi {
 
-// Bond cutting across the crack plane of a failing particle (eqs 34-35, read as physics-notes
-// section 5 explains: with r_c the midpoint of the bond, as printed, eq 34 never holds).
+// Bond cutting across the crack plane of a failing particle (eqs 34-35, read as docs/theory.md,
+// section 5.3 explains: with r_c the midpoint of the bond, as printed, the two ends of every bond
+// lie on opposite sides of a plane through it, so eq 34 cannot tell which bonds the crack crosses).
 // The rule implemented: the crack plane goes through the failing particle c (r_c = x_c) with
 // normal n_c. An intact bond (i, j) is cut when
 //   (eq 34)  i and j lie on opposite sides of the plane, side(p) = [(x_p - x_c) . n_c >= 0]

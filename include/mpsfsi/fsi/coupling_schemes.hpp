@@ -5,7 +5,7 @@ namespace mpsfsi {
 
 // Coupling-scheme policies of FsiCoupler. One coupled step from t^n to t^n + dt:
 //
-// ExplicitPartitioned, the paper's scheme (its Fig 1 and physics-notes section 4): the fluid steps
+// ExplicitPartitioned, the paper's scheme (its Fig 1 and docs/theory.md, section 4.2): the fluid steps
 // with the structure at t^n as its moving wall, the interface pressure P^{n+1} becomes the load,
 // and the structure sub-steps to t^n + dt under it. One fluid solve per step. Like every
 // loosely coupled scheme it is subject to the added-mass instability when the structure is light

@@ -13,7 +13,7 @@
 
 namespace mpsfsi {
 
-// The fluid's load on a structure, eqs 18-19 (physics-notes section 4). For each surface particle
+// The fluid's load on a structure, eqs 18-19 (docs/theory.md, section 4.3). For each surface particle
 // i of the structure, with outward normal n_i:
 //   x_IF,i = x_i + 0.5 l0 n_i                                       (eq 19, Antoci et al. 2007)
 //   P_IF,i = sum_j P_j w(|x_j - x_IF,i|) / sum_j w(|x_j - x_IF,i|)   (eq 18, fluid particles j)

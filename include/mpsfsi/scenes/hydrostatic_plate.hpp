@@ -26,7 +26,8 @@ struct HydrostaticPlate {
   // Also the side walls' thickness in layers (one wall, the rest dummy). 5, not 3: the plate's end
   // faces are structure surface, free-surface (P = 0) rows of the PPE; at 3 layers they are within
   // the Laplacian's 3.1 l0 of the corner wall particles, lower their pressure and draw the corner
-  // water in (corner speed at h/l0 = 8: 0.40 m/s at 3 layers, 0.28 at 5; README).
+  // water in (peak corner speed at h/l0 = 8 without the covered-surface rule: 0.40 m/s at 3
+  // layers, 0.28 at 5; the rule brings the latter to 0.06, docs/validation/fsi.md).
   int clamp_columns = 5;
 
   double flexural_rigidity() const {

@@ -16,7 +16,7 @@
 
 namespace mpsfsi {
 
-// The fixed bonds of a total-Lagrangian solid (physics-notes section 3): every pair of particles
+// The fixed bonds of a total-Lagrangian solid (docs/theory.md, section 3.2): every pair of particles
 // of the same body closer than re in the reference configuration, stored per particle in CSR form
 // with j ascending. Each directed bond keeps its reference vector r0_ij = X_j - X_i and the weight
 // ratio beta_ij = w(|r0_ij|) / |r0_ij|^2 that every structure sum uses. Bonds are symmetric: (i, j)

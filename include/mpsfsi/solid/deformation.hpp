@@ -32,8 +32,9 @@ struct SolidModelContext {
 // halved on the diagonal. F_i is the linear part of A_i. The fit is the corrected gradient of
 // Khayyer & Gotoh (2011) raised by one order: a linear-only fit is exact for affine motion but, at
 // a free surface where the neighbourhood is one-sided, it reads the bending strain about 0.8 l0
-// inside the particle (the quadratic part of the field leaks into the gradient), which softened
-// the oscillating plate by 4 % at H/l0 = 10; with the quadratic terms that error goes (README).
+// inside the particle (the quadratic part of the field leaks into the gradient). The quadratic
+// terms remove that error (oscillating plate at H/l0 = 10: period error 4.0 % with the linear fit,
+// 2.8 % with the quadratic one, the rest from the clamp; docs/theory.md, section 3.3).
 // A_i = [I 0] + sum_j (r_ij - r0_ij) g_ij^T with g_ij = beta_ij M_i^+ phi(r0_ij) and
 // M_i = sum_j beta_ij phi phi^T. A particle whose neighbourhood cutting has thinned (in some
 // direction less than a quarter of the weight of its intact neighbourhood's strongest) uses the
@@ -159,18 +160,18 @@ class DeformationFit {
   static constexpr Scalar kQuadraticConditionLimit = Scalar(1e-3);
 
   // The least weight, as a fraction of the strongest direction of the particle's intact
-  // neighbourhood (reference_moment_), with which a direction is read at face value. A
-  // least-squares fit normalises the weights away: a particle left by cutting with a strong bond
-  // and a long weak one (w(2 l0) is 1/22 of w(l0)) reads the weak bond's stretch as fully as the
-  // strong one's. Beside an opening crack such a bond spans
-  // the gap, stretched by tens of per cent, and the refit particle jumps from sigma_f to 100 times
-  // it, which put the energy of the whole beam into a few particles in one step (the l0 = 1 mm
-  // bending beam shattered, README). Below the floor the moment matrix's eigenvalue is raised to
-  // it, so such a direction counts in proportion to the weight it has: no bond's coefficient is
-  // more than 1/floor times its value in the intact neighbourhood. Every particle of an intact
-  // lattice is above it (the weakest direction anywhere, at a corner, is 0.35 of a full
-  // neighbourhood's in 2D and 0.29 in 3D at re = 2.1 l0, and more of the corner's own strongest),
-  // and directions without any bond keep F = I (a chip carries no stress).
+  // neighbourhood (reference_moment_), with which a direction is read at face value. A least-squares
+  // fit normalises the weights away: a particle left by cutting with a strong bond and a long weak
+  // one (w(2 l0) is 1/22 of w(l0)) reads the weak bond's stretch as fully as the strong one's.
+  // Beside an opening crack such a bond spans the gap, stretched by tens of per cent, and the refit
+  // particle jumps from sigma_f to 100 times it, which puts the energy of the whole beam into a few
+  // particles in one step (without the floor the l0 = 1 mm bending beam shatters;
+  // docs/validation/fracture.md). Below the floor the moment matrix's eigenvalue is raised to it, so
+  // such a direction counts in proportion to the weight it has: no bond's coefficient is more than
+  // 1/floor times its value in the intact neighbourhood. Every particle of an intact lattice is
+  // above it (the weakest direction anywhere, at a corner, is 0.35 of a full neighbourhood's in 2D
+  // and 0.29 in 3D at re = 2.1 l0, and more of the corner's own strongest), and directions without
+  // any bond keep F = I (a chip carries no stress).
   static constexpr Scalar kWeakDirectionFloor = Scalar(0.25);
 
   // Eigen-decomposition of particle i's linear moment matrix sum_j beta_ij r0_ij r0_ij^T.

@@ -77,7 +77,7 @@ enum class Constraint : std::int32_t {
   support = 2,     // no velocity along a given direction (a simple support / roller)
 };
 
-// Elastic solid on fixed initial bonds (total Lagrangian, physics-notes section 3), integrated
+// Elastic solid on fixed initial bonds (total Lagrangian, docs/theory.md, section 3), integrated
 // explicitly with velocity Verlet (kick-drift-kick, symplectic):
 //   v^{n+1/2} = v^n + dt/2 a^n,   x^{n+1} = x^n + dt v^{n+1/2},   v^{n+1} = v^{n+1/2} + dt/2 a^{n+1},
 //   m a = f_internal(x) + f_contact(x) + f_external + m g   (eq 16 with f_FtoS = f_external / m).

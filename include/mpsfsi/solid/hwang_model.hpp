@@ -14,7 +14,7 @@
 namespace mpsfsi {
 
 // The paper's structure model (eqs 16-17 with particle rotation, eq 8; Hwang et al. 2014, 2016),
-// read as physics-notes section 3 describes:
+// read as docs/theory.md, section 3.4 describes:
 //   volumetric strain (eq 17)  eps_i = (d / n0_i) sum_j (|r_ij| - |r0_ij|) / |r0_ij| w0_ij,
 //                              n0_i the particle's own reference number density;
 //   volumetric force           f_i = V lambda (d/n0) sum_j (eps_i + eps_j) (r_ij/|r_ij|) w0_ij/|r0_ij|

@@ -11,7 +11,7 @@
 
 namespace mpsfsi {
 
-// How a 2D solid is read out of plane (physics-notes section 3). Plane strain keeps the 3D Lame
+// How a 2D solid is read out of plane (docs/theory.md, section 3.1). Plane strain keeps the 3D Lame
 // constants; plane stress replaces lambda by lambda* = 2 lambda mu / (lambda + 2 mu). Ignored in 3D.
 enum class PlaneModel { plane_strain, plane_stress };
 

@@ -10,8 +10,8 @@
 
 namespace mpsfsi {
 
-// Outward normals of a structure from the gradient of its number density (physics-notes
-// section 4), over the intact bonds at the current positions:
+// Outward normals of a structure from the gradient of its number density (docs/theory.md,
+// section 4.1), over the intact bonds at the current positions:
 //   g_i = sum_j w(|r0_ij|) (x_i - x_j) / |x_i - x_j|,   n_i = g_i / |g_i|.
 // The reference weights make the sum see the bonds, not whatever lies near i now: a cut bond
 // drops out, so the faces of a crack get normals pointing into it, and two bodies in contact do
