@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Builds everything and runs the default test suite (unit, verification, package, benchmark
-# smoke tests). Long validation runs carry the CTest label "validation" and are excluded here:
-#   ctest --test-dir build -L validation -LE long   # about 16 minutes on 2 cores
-#   ctest --test-dir build -L long                  # the coupled hydrostatic plate at h/l0 = 24, about 50 minutes
+# Builds everything and runs the default test suite (unit, verification, examples, quick start,
+# package, benchmark smoke tests). Long validation runs carry the CTest label "validation" and are
+# excluded here:
+#   ctest --test-dir build -L validation -LE long   # about 8 minutes on 2 cores
+#   ctest --test-dir build -L long                  # the coupled plate at h/l0 = 24 and the 3D bending beam, about 1.5 hours
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${MPSFSI_CMAKE_ARGS:-}

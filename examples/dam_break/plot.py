@@ -1,14 +1,17 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
 """Plots the dam-break surge front and residual column height (dam_break.csv) against Martin &
-Moyce (1952) and Koshizuka & Oka (1996). Usage: /usr/bin/python3 plot.py OUT_DIR (Debian's python3-matplotlib) [--shift T]  -> OUT_DIR/dam_break.png"""
+Moyce (1952) and Koshizuka & Oka (1996). Usage: python3 examples/dam_break/plot.py OUT_DIR [--shift T]  -> OUT_DIR/dam_break.png"""
 import argparse
 import csv
 import os
+import sys
+from pathlib import Path
 
-import matplotlib
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "common"))
+from plot_setup import matplotlib_for_files  # noqa: E402
 
-matplotlib.use("Agg")
+matplotlib = matplotlib_for_files()
 import matplotlib.pyplot as plt  # noqa: E402
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "verification", "data")
@@ -28,8 +31,8 @@ def read(path, x, y):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("out")
-    ap.add_argument("--shift", type=float, default=0.32,
-                    help="time-origin shift of the experiment in T (the verification test fits 0.32)")
+    ap.add_argument("--shift", type=float, default=0.29,
+                    help="time-origin shift of the experiment in T (the one the verification test fits)")
     args = ap.parse_args()
     t, z = read(os.path.join(args.out, "dam_break.csv"), "T", "Z_over_a")
     tau, h = read(os.path.join(args.out, "dam_break.csv"), "tau", "H_over_2a")

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Renders the droplet-on-ice-beam runs to PNG (the paper's Figs 11-14).
 
-usage: /usr/bin/python3 examples/droplet_on_ice_beam/plot.py [output dir]   (default out/droplet_on_ice_beam)
+usage: python3 examples/droplet_on_ice_beam/plot.py [output dir]   (default out/droplet_on_ice_beam)
 
 Writes snapshots.png (t = 4..10 ms; columns: sigma_xx without fracture, sigma_xx with fracture,
 damage with fracture; water in blue), tip.png (beam-tip displacement against time, both runs)
@@ -12,9 +12,10 @@ import csv
 import sys
 from pathlib import Path
 
-import matplotlib
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "common"))
+from plot_setup import matplotlib_for_files  # noqa: E402
 
-matplotlib.use("Agg")
+matplotlib = matplotlib_for_files()
 import matplotlib.pyplot as plt  # noqa: E402
 
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/droplet_on_ice_beam")

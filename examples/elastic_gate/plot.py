@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Renders the elastic-gate run to PNG.
 
-usage: /usr/bin/python3 examples/elastic_gate/plot.py [output dir]   (default out/elastic_gate)
+usage: python3 examples/elastic_gate/plot.py [output dir]   (default out/elastic_gate)
 
 Writes gate_tip.png: the horizontal and vertical displacement of the gate's free end against time.
 """
@@ -10,9 +10,10 @@ import csv
 import sys
 from pathlib import Path
 
-import matplotlib
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "common"))
+from plot_setup import matplotlib_for_files  # noqa: E402
 
-matplotlib.use("Agg")
+matplotlib = matplotlib_for_files()
 import matplotlib.pyplot as plt  # noqa: E402
 
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/elastic_gate")

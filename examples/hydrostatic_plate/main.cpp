@@ -55,6 +55,7 @@ struct Options {
   double require = -1;       // %, the largest accepted |deflection error| (none if negative)
   int clamp_columns = 0;     // the clamp's and the side walls' depth in layers (0: the scene's)
   std::string covered = "on";  // CouplingParameters::covered_surface_as_dummy
+  std::string partial_wetting = "on";  // CouplingParameters::partial_wetting_correction
   double sub_tolerance = SubIterated{}.tolerance;  // the sub-iterations' relative load residual
   std::string out = "out/hydrostatic_plate";
   std::string analyse;       // a midspan.csv of an earlier run: report its averages, run nothing
@@ -217,6 +218,7 @@ int run_coupled(const scenes::HydrostaticPlate& scene, const Options& o) {
   fp.max_dt = o.max_dt;
   CouplingParameters cp;
   cp.covered_surface_as_dummy = o.covered == "on";
+  cp.partial_wetting_correction = o.partial_wetting == "on";
   SubIterated scheme;
   scheme.tolerance = o.sub_tolerance;
   FsiCoupler<Fluid, ElasticSolver<2>, SubIterated> coupler(scene.fluid_particles(o.l0), fp, std::move(plate), cp, scheme);
@@ -307,6 +309,8 @@ int main(int argc, char** argv) try {
       ->check(CLI::Range(0, 100));
   cli.add("--covered", o.covered, "covered structure surface joins the fluid as dummies (CouplingParameters)")
       ->check(one_of({"on", "off"}));
+  cli.add("--partial-wetting", o.partial_wetting, "the interface load's partial-wetting correction (CouplingParameters)")
+      ->check(one_of({"on", "off"}));
   cli.add("--sub-tolerance", o.sub_tolerance, "sub-iterations' convergence: |r| <= tolerance |F| on the interface load")
       ->check(positive());
   cli.add("--out", o.out, "output folder");
@@ -337,7 +341,8 @@ int main(int argc, char** argv) try {
   else if (o.ppe == "amg") r = run_coupled<FluidSolver<2, AmgPolicies>>(scene, o);
 #endif
   else r = run_coupled<FluidSolver<2>>(scene, o);
-  std::printf("wrote %s/midspan.csv and the .pvd files\n", o.out.c_str());
+  std::printf("wrote %s/midspan.csv and the .pvd files; plot with python3 examples/hydrostatic_plate/plot.py %s\n",
+              o.out.c_str(), o.out.c_str());
   return r;
 } catch (const mpsfsi::SimulationError& e) {
   std::fprintf(stderr, "hydrostatic_plate: %s\n(the last good snapshot is the last one in the .pvd files)\n", e.what());

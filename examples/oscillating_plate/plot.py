@@ -2,15 +2,16 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Plots the oscillating plate's tip displacement and energies to PNG.
 
-usage: /usr/bin/python3 examples/oscillating_plate/plot.py [output dir]   (default out/oscillating_plate)
+usage: python3 examples/oscillating_plate/plot.py [output dir]   (default out/oscillating_plate)
 """
 import csv
 import sys
 from pathlib import Path
 
-import matplotlib
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "common"))
+from plot_setup import matplotlib_for_files  # noqa: E402
 
-matplotlib.use("Agg")
+matplotlib = matplotlib_for_files()
 import matplotlib.pyplot as plt  # noqa: E402
 
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/oscillating_plate")

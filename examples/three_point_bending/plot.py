@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Renders the three-point bending study to PNG (the paper's Figs 5-7).
 
-usage: /usr/bin/python3 examples/three_point_bending/plot.py [output dir]   (default out/three_point_bending)
+usage: python3 examples/three_point_bending/plot.py [output dir]   (default out/three_point_bending)
 
 Writes load_deflection.png, stress_history.png (Fig 6: sigma_xx at the top and bottom of
 mid-span against time), flexural_strain.png (Fig 7: simulated against experimental flexural
@@ -14,9 +14,10 @@ import csv
 import sys
 from pathlib import Path
 
-import matplotlib
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "common"))
+from plot_setup import matplotlib_for_files  # noqa: E402
 
-matplotlib.use("Agg")
+matplotlib = matplotlib_for_files()
 import matplotlib.pyplot as plt  # noqa: E402
 
 out = Path(sys.argv[1] if len(sys.argv) > 1 else "out/three_point_bending")
