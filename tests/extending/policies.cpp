@@ -70,18 +70,28 @@ struct ColumnarIce : mpsfsi::SolidDefaults<Dim> {
 };
 // [end snippet]
 
+// A small dam break for the fluid policies: a column 0.1 m square in a tank 0.2 m long,
+// l0 = 1 cm, fixed step 0.5 ms.
+constexpr double kSpacing = 0.01;
+
+mpsfsi::FluidParameters<2> small_dam_break_parameters() {
+  mpsfsi::FluidParameters<2> p;
+  p.l0 = kSpacing;
+  p.dt = 5e-4;
+  return p;
+}
+
+mpsfsi::ParticleSet<2> small_dam_break() { return mpsfsi::scenes::dam_break<2>(0.1, 0.1, 0.2, 0.15, kSpacing); }
+
 }  // namespace
 
 TEST_SUITE("extending") {
 
 TEST_CASE("extending: a user's weight function drives FluidSolver and the lattice constants") {
   using namespace mpsfsi;
-  const double l0 = 0.01;
-  FluidParameters<2> p;
-  p.l0 = l0;
-  p.dt = 5e-4;
-  auto set = scenes::dam_break<2>(0.1, 0.1, 0.2, 0.15, l0);
-  FluidSolver<2, QuadraticFluid> solver(set, p);
+  const double l0 = kSpacing;
+  const auto p = small_dam_break_parameters();
+  FluidSolver<2, QuadraticFluid> solver(small_dam_break(), p);
   const auto constants = ideal_lattice_constants<2, QuadraticWeight>(l0, p.re_density());
   // n0 of the ideal lattice with this weight: the sum over the full neighbourhood.
   double n0 = 0;
@@ -100,11 +110,8 @@ TEST_CASE("extending: a user's weight function drives FluidSolver and the lattic
 
 TEST_CASE("extending: a user's linear solver gives the default's answer where SSOR-CG converges") {
   using namespace mpsfsi;
-  const double l0 = 0.01;
-  FluidParameters<2> p;
-  p.l0 = l0;
-  p.dt = 5e-4;
-  const auto set = scenes::dam_break<2>(0.1, 0.1, 0.2, 0.15, l0);
+  const auto p = small_dam_break_parameters();
+  const auto set = small_dam_break();
   FluidSolver<2> plain(set, p);
   FluidSolver<2, RobustFluid> robust(set, p);
   for (int k = 0; k < 10; ++k) {
