@@ -18,7 +18,8 @@ int main() {
   for (auto i : scenes::select(ice, [](const Vec<2>& x) { return x[0] < -0.044; })) bar.clamp(i);
   for (auto i : scenes::select(ice, [](const Vec<2>& x) { return x[0] > 0.044; }))
     bar.prescribe_velocity(i, Vec<2>(0.05, 0));  // pull the right end at 0.05 m/s
-  bar.impose_crack(scenes::select(ice, [](const Vec<2>& x) { return x.norm() < 0.002; })[0], Vec<2>(1, 0));  // a notch
+  // A notch: cut the bonds across x = 0 at the bottom particle next to the origin.
+  bar.impose_crack(scenes::select(ice, [](const Vec<2>& x) { return x.norm() < 0.002; })[0], Vec<2>(1, 0));
   while (bar.first_failure_time() < 0 && bar.time() < 0.1) bar.step();
   bar.advance_to(bar.time() + 1e-3);  // let the crack run
   std::printf("first failure at t = %.2f ms; %zu bonds cut; %zu pieces\n", 1e3 * bar.first_failure_time(),
