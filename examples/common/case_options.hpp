@@ -19,10 +19,8 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
-#include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -132,8 +130,6 @@ class CaseOptions {
   }
 
   CLI::App& app() { return app_; }
-  const std::string& program() const { return program_; }
-  bool print_case_requested() const { return print_case_; }
 
   // Parses the command line and, when given, the case file. Throws UsageError on bad input;
   // returns false after printing the help when --help was asked for.
