@@ -53,9 +53,9 @@ double elastic_stiffness(const bending::Result& r) {
   return best->load / best->deflection;
 }
 
-// Timoshenko stiffness of the simply supported beam (shear coefficient 5/6), force in N.
-double timoshenko_stiffness(const bending::IceBeamCase& c, double nu) {
-  const double l = bending::IceBeamCase::span, e = c.youngs_modulus(), g = e / (2 * (1 + nu));
+// Timoshenko stiffness of the simply supported beam of modulus e (shear coefficient 5/6), force in N.
+double timoshenko_stiffness(const bending::IceBeamCase& c, double e, double nu) {
+  const double l = bending::IceBeamCase::span, g = e / (2 * (1 + nu));
   const double inertia = c.width * c.height * c.height * c.height / 12;
   return 1 / (l * l * l / (48 * e * inertia) + l / (4 * 5.0 / 6.0 * g * c.width * c.height));
 }
@@ -73,6 +73,9 @@ void run_3d_case02(double l0) {
                               << r.fracture_surface_offset / r.l0 << " l0 (" << r.fracture_surface_beyond_2l0 << " of "
                               << r.fracture_surface_crossings << " crossings beyond 2 l0), " << r.wall_seconds << " s");
   check_clean_break(r, false);
+  // 5 %: the 3D beam against Table 1 with the material modulus, the tolerance of the 2D study's
+  // P_max (the 3D run adds the width's Poisson effect that the plane model leaves out).
+  CHECK(std::abs(r.error()) <= 0.05);
 }
 
 }  // namespace
@@ -82,7 +85,7 @@ TEST_SUITE("verification.fracture") {
 TEST_CASE("three-point bending case 02 breaks cleanly at mid-span") {
   const auto c = bending::table1()[0];
   const auto r = bending::run<2>(c, bending::Options{});
-  const double k_sim = elastic_stiffness(r), k_theory = timoshenko_stiffness(c, 0.3);
+  const double k_sim = elastic_stiffness(r), k_theory = timoshenko_stiffness(c, r.youngs_modulus, 0.3);
   MESSAGE("case 02: P_max " << r.peak_load << " N, dd " << r.deflection_at_peak << " m, eps_f " << r.flexural_strain
                             << " vs " << c.flexural_strain() << " (" << 100 * r.error() << " %), stiffness " << k_sim
                             << " N/m vs Timoshenko " << k_theory << ", failures within " << r.crack_offset / r.l0
@@ -90,7 +93,7 @@ TEST_CASE("three-point bending case 02 breaks cleanly at mid-span") {
                             << r.wall_seconds << " s");
   check_clean_break(r, true);
   // 5 %: Timoshenko's stiffness with shear (kappa = 5/6), the bound of the simply supported beam
-  // of verification.solid. Measured 731.6 kN/m against Timoshenko's 731.7 and Euler-Bernoulli's 834
+  // of verification.solid. Measured 834.0 kN/m against Timoshenko's 833.5 with the material modulus
   // (docs/validation/fracture.md).
   CHECK(std::abs(k_sim / k_theory - 1) < 0.05);
 }
@@ -99,18 +102,53 @@ TEST_CASE("three-point bending case 02 breaks cleanly at mid-span") {
 
 TEST_SUITE("validation.fracture") {
 
+// The five cases with the material modulus (the default): flexural strain within 3 % and P_max
+// within 5 % of Table 1 (the experiment). Sources: 3 % is the solid's discretisation error at this
+// resolution (the cantilever and beam of verification.solid, +1.5 % and +1.7 % against
+// Timoshenko) with the l0 = 1 mm convergence below (1 %); 5 % on P_max because eq 37 turns the
+// experiment's P into sigma_f by beam theory, which a continuum beam loaded through roller contact
+// meets to a few per cent (docs/validation/fracture.md).
 TEST_CASE("three-point bending: all five cases of Table 1") {
   std::string table =
-      "\n| case | P_sim N | P_exp N | eps_sim | eps_exp | error | failures within | surface within | wall s |\n"
-      "|---|---|---|---|---|---|---|---|---|\n";
+      "\n| case | E MPa | P_sim N | P_exp N | eps_sim | eps_exp | error | failures within | surface within | wall s |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& c : bending::table1()) {
     const auto r = bending::run<2>(c, bending::Options{});
     char line[256];
-    std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.5f | %.5f | %+.1f %% | %.1f l0 | %.1f l0 | %.1f |\n",
-                  c.name.c_str(), r.peak_load, c.peak_load, r.flexural_strain, c.flexural_strain(), 100 * r.error(),
-                  r.crack_offset / r.l0, r.fracture_surface_offset / r.l0, r.wall_seconds);
+    std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.1f | %.5f | %.5f | %+.1f %% | %.1f l0 | %.1f l0 | %.1f |\n",
+                  c.name.c_str(), r.youngs_modulus / 1e6, r.peak_load, c.peak_load, r.flexural_strain,
+                  c.flexural_strain(), 100 * r.error(), r.crack_offset / r.l0, r.fracture_surface_offset / r.l0,
+                  r.wall_seconds);
     table += line;
     check_clean_break(r, true);
+    CAPTURE(c.name);
+    CHECK(std::abs(r.error()) <= 0.03);
+    CHECK(std::abs(r.peak_load / c.peak_load - 1) <= 0.05);
+  }
+  MESSAGE(table);
+}
+
+// The paper's protocol, Table 1's apparent E as the solid's modulus: the beam deflects by the
+// shear term as well, so the flexural strain exceeds Table 1's by Timoshenko's
+// s = 2 (1 + nu) h^2 / (kappa L^2) (docs/theory.md, section 6.3). Checked: the excess minus s
+// within the 3 % of the material-modulus check above.
+TEST_CASE("three-point bending: the apparent modulus deflects by the shear term") {
+  std::string table =
+      "\n| case | E MPa | P_sim N | eps_sim | eps_exp | error | shear term s |\n|---|---|---|---|---|---|---|\n";
+  bending::Options apparent;
+  apparent.modulus = bending::Modulus::apparent;
+  for (const auto& c : bending::table1()) {
+    const auto r = bending::run<2>(c, apparent);
+    const double shear_term = c.material_modulus(apparent.poisson_ratio) / c.youngs_modulus() - 1;
+    char line[256];
+    std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.5f | %.5f | %+.1f %% | %.1f %% |\n", c.name.c_str(),
+                  r.youngs_modulus / 1e6, r.peak_load, r.flexural_strain, c.flexural_strain(), 100 * r.error(),
+                  100 * shear_term);
+    table += line;
+    check_clean_break(r, true);
+    CAPTURE(c.name);
+    CHECK(std::abs((1 + r.error()) / (1 + shear_term) - 1) <= 0.03);
+    CHECK(std::abs(r.peak_load / c.peak_load - 1) <= 0.05);
   }
   MESSAGE(table);
 }
@@ -129,21 +167,25 @@ TEST_CASE("three-point bending: halving the loading speed") {
   CHECK(std::abs(change) <= 0.01);
 }
 
+// Cases 02 and 05 at l0 = 1 mm against 2 mm: the flexural strain moves by at most 1 %
+// (convergence with resolution; docs/validation/fracture.md gives the measured changes).
 TEST_CASE("three-point bending: l0 = 1 mm against 2 mm") {
-  const auto c = bending::table1()[0];
-  bending::Options fine;
-  fine.l0 = 0.001;
-  const auto& coarse = baseline_case02();
-  const auto r = bending::run<2>(c, fine);
-  const double change = r.flexural_strain / coarse.flexural_strain - 1;
-  MESSAGE("eps_f at l0 = 2 mm " << coarse.flexural_strain << ", at 1 mm " << r.flexural_strain << " (" << 100 * change
-                                << " %), P_max " << coarse.peak_load << " -> " << r.peak_load << " N, failures within "
-                                << r.crack_offset / r.l0 << " l0, fracture surface within "
-                                << r.fracture_surface_offset / r.l0 << " l0");
-  check_clean_break(r, false);
-  // 3 %: convergence with resolution (measured -0.74 %; with the failure stress read at particle
-  // centres the same refinement moves the strain by -5.9 %; docs/validation/fracture.md).
-  CHECK(std::abs(change) <= 0.03);
+  for (const std::size_t k : {std::size_t{0}, std::size_t{3}}) {
+    const auto c = bending::table1()[k];
+    bending::Options fine;
+    fine.l0 = 0.001;
+    const auto coarse = k == 0 ? baseline_case02() : bending::run<2>(c, bending::Options{});
+    const auto r = bending::run<2>(c, fine);
+    const double change = r.flexural_strain / coarse.flexural_strain - 1;
+    MESSAGE("case " << c.name << ": eps_f at l0 = 2 mm " << coarse.flexural_strain << ", at 1 mm " << r.flexural_strain
+                    << " (" << 100 * change << " %), error against Table 1 " << 100 * coarse.error() << " -> "
+                    << 100 * r.error() << " %, P_max " << coarse.peak_load << " -> " << r.peak_load
+                    << " N, failures within " << r.crack_offset / r.l0 << " l0, fracture surface within "
+                    << r.fracture_surface_offset / r.l0 << " l0, " << r.wall_seconds << " s");
+    CAPTURE(c.name);
+    check_clean_break(r, false);
+    CHECK(std::abs(change) <= 0.01);
+  }
 }
 
 // Known failure: at this coarse resolution the crack starts at the bottom centre and arrests
