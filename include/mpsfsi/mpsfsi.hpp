@@ -46,6 +46,7 @@
 #include "mpsfsi/fsi/fsi_coupler.hpp"
 #include "mpsfsi/fsi/interface_acceleration.hpp"
 #include "mpsfsi/fsi/interface_load.hpp"
+#include "mpsfsi/fsi/interface_quasi_newton.hpp"
 #include "mpsfsi/fsi/structure_surface.hpp"
 #include "mpsfsi/io/csv_writer.hpp"
 #include "mpsfsi/io/progress.hpp"

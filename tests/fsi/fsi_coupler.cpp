@@ -144,6 +144,40 @@ TEST_CASE("fsi.coupler: one step keeps fluid and structure in time and loads the
     CHECK(coupler.solid().time() == doctest::Approx(coupler.time()).epsilon(1e-12));
     CHECK(coupler.total_interface_force()[1] < 0);
   }
+  SUBCASE("interface quasi-Newton") {
+    FsiCoupler<FluidSolver<2>, ElasticSolver<2>, InterfaceQuasiNewton> coupler(c.scene.fluid_particles(c.l0),
+                                                                               c.fluid_parameters(), c.solid(c.l0));
+    coupler.step();
+    coupler.step();
+    CHECK(coupler.last_iterations() >= 2);
+    CHECK(coupler.last_iterations() <= InterfaceQuasiNewton{}.max_iterations);
+    CHECK(coupler.solid().time() == doctest::Approx(coupler.time()).epsilon(1e-12));
+    CHECK(coupler.total_interface_force()[1] < 0);
+  }
+}
+
+// A user's load on the structure (applied_force) adds to the fluid's: a downward force on the
+// plate's middle particle moves it further down than the water alone; bad entries are refused.
+TEST_CASE("fsi.coupler: an applied force adds to the fluid's load, and a bad one is refused") {
+  SmallCase c;
+  auto displacement = [&](double force) {
+    FsiCoupler<FluidSolver<2>, ElasticSolver<2>> coupler(c.scene.fluid_particles(c.l0), c.fluid_parameters(), c.solid(c.l0));
+    const double y0 = coupler.solid().particles().positions()[c.middle][1];
+    coupler.applied_force()[c.middle] = Vec<2>(0, -force);
+    for (int k = 0; k < 3; ++k) coupler.step();
+    return coupler.solid().particles().positions()[c.middle][1] - y0;
+  };
+  const double water_only = displacement(0), pushed = displacement(1e3);
+  INFO("middle particle moved " << water_only << " m by the water, " << pushed << " m with the force");
+  CHECK(pushed < water_only);
+
+  FsiCoupler<FluidSolver<2>, ElasticSolver<2>> coupler(c.scene.fluid_particles(c.l0), c.fluid_parameters(), c.solid(c.l0));
+  coupler.applied_force()[0] = Vec<2>(std::nan(""), 0);
+  CHECK_THROWS_WITH_AS(coupler.step(), doctest::Contains("applied_force() of structure particle 0 is not finite"),
+                       InvalidInput);
+  coupler.applied_force()[0] = Vec<2>::Zero();
+  coupler.applied_force().pop_back();
+  CHECK_THROWS_WITH_AS(coupler.step(), doctest::Contains("one entry per structure particle"), InvalidInput);
 }
 
 // The 3D gate scene is the 2D one extruded along z, so y is its vertical in 3D too. With the

@@ -26,10 +26,29 @@ struct ExplicitPartitioned {
 // within max_iterations throws SimulationError. Costs one fluid solve per iteration.
 struct SubIterated {
   static constexpr bool iterative = true;
+  static constexpr bool quasi_newton = false;
   static constexpr const char* name = "sub-iterated";
   int max_iterations = 50;
   double tolerance = 1e-3;
   double initial_relaxation = 0.5;  // omega_0, also the bound of |omega| at the first iteration
+};
+
+// InterfaceQuasiNewton: strong coupling by IQN-ILS (Degroote, Bathe & Vierendeels 2009), the
+// iterations of SubIterated with the load updated from a least-squares model of how the fluid's
+// load answers the structure (interface_quasi_newton.hpp), kept over `reuse_steps` steps. Where
+// the fluid's added mass dwarfs the structure's mass over a long wave (a floating ice sheet: the
+// water under it weighs tens of times the ice), Aitken's single factor has to damp every mode
+// by the strongest one's gain and converges slowly or not at all; the model fits the few strong
+// modes and leaves the rest to the fixed point. Same convergence test and failure as SubIterated.
+struct InterfaceQuasiNewton {
+  static constexpr bool iterative = true;
+  static constexpr bool quasi_newton = true;
+  static constexpr const char* name = "IQN-ILS";
+  int max_iterations = 50;
+  double tolerance = 1e-3;
+  double initial_relaxation = 0.5;  // omega of the first iteration when the model has no column
+  int reuse_steps = 8;              // steps whose columns are kept
+  int max_columns = 64;
 };
 
 }  // namespace mpsfsi

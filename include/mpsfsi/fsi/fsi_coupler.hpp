@@ -18,6 +18,7 @@
 #include "mpsfsi/fsi/coupling_schemes.hpp"
 #include "mpsfsi/fsi/interface_acceleration.hpp"
 #include "mpsfsi/fsi/interface_load.hpp"
+#include "mpsfsi/fsi/interface_quasi_newton.hpp"
 #include "mpsfsi/fsi/structure_surface.hpp"
 #include "mpsfsi/kernels/lattice_constants.hpp"
 #include "mpsfsi/kernels/weight.hpp"
@@ -90,8 +91,10 @@ class FsiCoupler {
     if (c_.partial_wetting_correction)
       full_weight_ = full_wetting_weight<Weight, dimension, scalar_type>(fluid_.parameters().l0, re());
     last_omega_ = initial_omega(scheme_);
+    if constexpr (uses_quasi_newton<Scheme>) quasi_newton_ = QuasiNewtonModel(scheme_.reuse_steps, scheme_.max_columns);
     structure_acceleration_.assign(solid_.particles().size(), vec_type::Zero());
     load_.assign(solid_.particles().size(), vec_type::Zero());
+    applied_force_.assign(solid_.particles().size(), vec_type::Zero());
     interface_pressure_.assign(solid_.particles().size(), 0);
   }
 
@@ -117,7 +120,11 @@ class FsiCoupler {
     auto t1 = clock::now();
     fluid_seconds_ += std::chrono::duration<double>(t1 - t0).count();
     const double dt = fluid_.last_dt();
-    compute_loads(load_);
+    // InterfaceQuasiNewton starts from the last step's converged load: where the fluid's added
+    // mass dwarfs the structure's, the explicit step's load (the wall moving on at its velocity at
+    // t^n) is off by more than the load itself, and a first iterate that far sends the next fluid
+    // solve into suction and the clamp to zero pressure, where the model learns nothing.
+    if (!uses_quasi_newton<Scheme> || step_count_ == 0) compute_loads(load_);
     substeps_ = advance_structure(dt, load_);
     iterations_ = 1;
     if constexpr (Scheme::iterative) iterate(dt);
@@ -147,6 +154,12 @@ class FsiCoupler {
   // pressure of eq 18, the outward normal and whether it is on the wetted surface (on the
   // structure's surface and not covered by the tank's fixed walls).
   const VecArray<dimension, scalar_type>& interface_force() const { return load_; }
+  // Forces on structure particles besides the fluid's (N, per unit thickness in 2D): a load the
+  // user applies, such as a force on an edge. Added to the interface load at every advance of
+  // the structure and never relaxed by a sub-iterated scheme; zero unless set. The structure's
+  // own external_force() is overwritten by the coupler, so loads go here.
+  VecArray<dimension, scalar_type>& applied_force() { return applied_force_; }
+  const VecArray<dimension, scalar_type>& applied_force() const { return applied_force_; }
   const std::vector<scalar_type>& interface_pressure() const { return interface_pressure_; }
   const VecArray<dimension, scalar_type>& normals() const { return normal_; }
   const std::vector<std::uint8_t>& on_surface() const { return on_surface_; }
@@ -239,14 +252,26 @@ class FsiCoupler {
 
   int advance_structure(double dt, const VecArray<dimension, scalar_type>& load) {
     const auto t0 = std::chrono::steady_clock::now();
-    solid_.external_force() = load;
+    if (applied_force_.size() != load.size())
+      detail::throw_invalid("FsiCoupler", "applied_force() must keep one entry per structure particle (" +
+                                              std::to_string(load.size()) + ")");
+    auto& f = solid_.external_force();
+    f.resize(load.size());
+    for (std::size_t s = 0; s < load.size(); ++s) {
+      if (!applied_force_[s].allFinite())
+        detail::throw_invalid("FsiCoupler", "applied_force() of structure particle " + std::to_string(s) +
+                                                " is not finite");
+      f[s] = load[s] + applied_force_[s];
+    }
     const int substeps = solid_.advance_by(dt);
     solid_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return substeps;
   }
 
-  // SubIterated: fixed point on the interface load with Aitken relaxation (coupling_schemes.hpp).
+  // SubIterated: fixed point on the interface load with Aitken relaxation; InterfaceQuasiNewton:
+  // the same iterations with the IQN-ILS update (coupling_schemes.hpp).
   void iterate(double dt) {
+    if constexpr (uses_quasi_newton<Scheme>) quasi_newton_.begin_step();
     // Start from the relaxation the last step converged with (bounded): the added-mass ratio
     // that sets it changes slowly.
     double omega = std::clamp(last_omega_, 0.05, 1.0);
@@ -273,7 +298,9 @@ class FsiCoupler {
         last_omega_ = omega;
         return;
       }
-      if (have_previous) {
+      if constexpr (uses_quasi_newton<Scheme>) {
+        quasi_newton_.next_load(load_, trial_, residual_, scheme_.initial_relaxation);
+      } else if (have_previous) {
         double num = 0, den = 0;
         for (std::size_t s = 0; s < residual_.size(); ++s) {
           const vec_type d = residual_[s] - previous_residual_[s];
@@ -282,7 +309,8 @@ class FsiCoupler {
         }
         if (den > 0) omega = -omega * num / den;
       }
-      for (std::size_t s = 0; s < load_.size(); ++s) load_[s] += omega * residual_[s];
+      if constexpr (!uses_quasi_newton<Scheme>)
+        for (std::size_t s = 0; s < load_.size(); ++s) load_[s] += omega * residual_[s];
       previous_residual_ = residual_;
       have_previous = true;
       solid_ = *solid_start_;
@@ -293,6 +321,14 @@ class FsiCoupler {
                               std::to_string(step_count_ + 1) + " (t = " + std::to_string(fluid_.time()) + ")",
                           step_count_ + 1, fluid_.time(), -1);
   }
+
+  template <class S, class = void>
+  struct quasi_newton_trait : std::false_type {};
+  template <class S>
+  struct quasi_newton_trait<S, std::void_t<decltype(S::quasi_newton)>> : std::bool_constant<S::quasi_newton> {};
+  template <class S>
+  static constexpr bool uses_quasi_newton = quasi_newton_trait<S>::value;
+  using QuasiNewtonModel = InterfaceQuasiNewtonModel<dimension, scalar_type>;
 
   template <class S>
   static double initial_omega(const S& s) {
@@ -312,6 +348,7 @@ class FsiCoupler {
   scalar_type structure_n0_;
   BasicNeighborList<scalar_type> candidates_, covering_;
   VecArray<dimension, scalar_type> sites_;
+  VecArray<dimension, scalar_type> applied_force_;  // the user's load on the structure
   VecArray<dimension, scalar_type> load_, trial_, residual_, previous_residual_;
   VecArray<dimension, scalar_type> structure_acceleration_, velocity_start_;
   std::vector<scalar_type> interface_pressure_, weight_sum_;
@@ -322,6 +359,7 @@ class FsiCoupler {
   double fluid_seconds_ = 0, solid_seconds_ = 0;
   scalar_type full_weight_ = 0;
   double last_omega_ = 1.0;
+  QuasiNewtonModel quasi_newton_;  // InterfaceQuasiNewton: the least-squares model
 };
 
 }  // namespace mpsfsi
