@@ -22,8 +22,9 @@ namespace mpsfsi {
 // the secant model's root. Without a column (the first iteration of the first step) it relaxes,
 // F_1 = F_0 + omega r_0. Columns of the last `reuse_steps` steps are kept: the fluid's response to
 // the structure (its added mass) changes slowly, and the model of earlier steps makes the first
-// iterations of the next one Newton-like. Nearly dependent columns are dropped by the QR's rank
-// threshold; at most `max_columns` are kept, the oldest dropped first.
+// iterations of the next one Newton-like. Nearly dependent columns get no weight: the column-
+// pivoted QR's rank threshold (1e-10 relative) leaves them out of the solve. At most `max_columns`
+// are kept, the oldest dropped first.
 template <int Dim, class Scalar = double>
 class InterfaceQuasiNewtonModel {
  public:
@@ -60,7 +61,7 @@ class InterfaceQuasiNewtonModel {
     const auto m = static_cast<Eigen::Index>(columns_.size());
     v_.resize(n, m);
     w_.resize(n, m);
-    for (Eigen::Index j = 0; j < m; ++j) {  // newest first: the QR keeps the newest when columns are dependent
+    for (Eigen::Index j = 0; j < m; ++j) {  // newest first
       const auto& c = columns_[static_cast<std::size_t>(m - 1 - j)];
       v_.col(j) = c.v;
       w_.col(j) = c.w;
