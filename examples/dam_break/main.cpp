@@ -44,8 +44,10 @@ int run(const Options& o) {
   ProgressReporter progress(o.end);
   std::size_t frame = 0;
   double next_output = 0, wall = 0;
+  const std::string dt_text =
+      o.dt > 0 ? mpsfsi_examples::detail::format_number(o.dt) + " s" : "automatic (Courant 0.2)";
   std::printf("dam break %dD: %zu particles, l0 = %g m, dt = %s, to t = %g s\n", Dim, solver.particles().size(), o.l0,
-              o.dt > 0 ? (std::to_string(o.dt) + " s").c_str() : "automatic (Courant 0.2)", o.end);
+              dt_text.c_str(), o.end);
   std::printf("columns: simulated time; T = t sqrt(2 g / a) and surge front Z/a (Martin & Moyce's scaling); "
               "tau = t sqrt(g / a) and residual column height H/2a\n");
   std::fprintf(stderr, "%s\n", ProgressReporter::legend());

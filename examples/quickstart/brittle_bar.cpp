@@ -12,7 +12,6 @@ int main() {
   p.youngs_modulus = 270e6;     // Pa
   p.poisson_ratio = 0.3;
   p.tensile_strength = 1.14e6;  // Pa: sigma_f of the maximum principal stress criterion
-  p.bond_viscosity = 0.2;       // damps the waves a cut bond sends out
   p.plane_model = PlaneModel::plane_stress;
   ElasticSolver<2, BrittleSolidPolicies<2>> bar(ice, p);
   for (auto i : scenes::select(ice, [](const Vec<2>& x) { return x[0] < -0.044; })) bar.clamp(i);

@@ -48,6 +48,7 @@
 #include "mpsfsi/fsi/interface_load.hpp"
 #include "mpsfsi/fsi/interface_quasi_newton.hpp"
 #include "mpsfsi/fsi/structure_surface.hpp"
+#include "mpsfsi/io/checkpoint.hpp"
 #include "mpsfsi/io/csv_writer.hpp"
 #include "mpsfsi/io/progress.hpp"
 #include "mpsfsi/io/pvd_writer.hpp"

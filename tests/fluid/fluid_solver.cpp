@@ -48,6 +48,13 @@ TEST_CASE("fluid.fluid_solver: bad input gets a clear error") {
     FluidSolver<2> solver(small_tank(), p);
     CHECK_THROWS_WITH_AS(solver.step(), doctest::Contains("stability limit"), InvalidInput);
   }
+  SUBCASE("non-finite external acceleration") {
+    FluidSolver<2> solver(small_tank(), p);
+    solver.external_acceleration()[4] = Vec<2>(0, std::nan(""));
+    CHECK_THROWS_WITH_AS(solver.step(), doctest::Contains("external acceleration of particle 4 (id 4) is not finite"),
+                         InvalidInput);
+    CHECK(solver.step_count() == 0);
+  }
   SUBCASE("negative density") {
     p.density = -1;
     CHECK_THROWS_WITH_AS(FluidSolver<2>(small_tank(), p), doctest::Contains("density"), InvalidInput);

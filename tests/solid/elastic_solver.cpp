@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <string>
 
 #include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
@@ -67,9 +68,41 @@ TEST_CASE("solid.elastic_solver: bad input gets a clear error") {
     CHECK_THROWS_WITH_AS(ElasticSolver<2>(block(), rubber(), std::vector<std::int32_t>(3, 0)),
                          doctest::Contains("body ids"), InvalidInput);
   }
+  SUBCASE("particles spaced differently from l0") {
+    // 1 mm apart with l0 = 2 mm would make every mass rho l0^2 four times too large.
+    CHECK_THROWS_WITH_AS(ElasticSolver<2>(block(0.06, 0.04, 0.001), rubber(0.002)),
+                         doctest::Contains("m apart (median distance to the nearest neighbour) but l0 = 0.002 m"),
+                         InvalidInput);
+    CHECK_THROWS_WITH_AS(ElasticSolver<2>(block(0.06, 0.04, 0.02), rubber(0.01)),
+                         doctest::Contains("spaced more widely than l0"), InvalidInput);
+    CHECK_NOTHROW(ElasticSolver<2>(block(0.06, 0.04, 0.001), rubber(0.001)));
+  }
+  SUBCASE("non-finite external force") {
+    ElasticSolver<2> s(block(), rubber());
+    s.external_force()[7] = Vec<2>(std::nan(""), 0);
+    CHECK_THROWS_WITH_AS(s.step(), doctest::Contains("external force on particle 7 (id 7) is not finite"),
+                         InvalidInput);
+    CHECK(s.step_count() == 0);
+  }
+  SUBCASE("times in messages keep their significant digits") {
+    auto p = rubber();
+    p.youngs_modulus = 1e12;  // a limit of a few 1e-7 s, which fixed decimals print as 0.000000
+    p.dt = 1e-6;
+    std::string message;
+    try {
+      ElasticSolver<2> s(block(), p);
+    } catch (const InvalidInput& e) {
+      message = e.what();
+    }
+    CHECK(message.find("dt = 1e-06 s exceeds the stability limit " + detail::format_number(p.max_stable_dt()) +
+                       " s") != std::string::npos);
+    CHECK(p.max_stable_dt() < 1e-6);
+    CHECK(message.find("0.000000") == std::string::npos);
+  }
   SUBCASE("bad boundary conditions") {
     ElasticSolver<2> s(block(), rubber());
-    CHECK_THROWS_WITH_AS(s.clamp(1000), doctest::Contains("out of range"), InvalidInput);
+    CHECK_THROWS_WITH_AS(s.clamp(1000), doctest::Contains("ElasticSolver::clamp: particle 1000 out of range"),
+                         InvalidInput);
     CHECK_THROWS_WITH_AS(s.support(0, Vec<2>::Zero()), doctest::Contains("normal"), InvalidInput);
   }
 }
@@ -135,6 +168,18 @@ TEST_CASE("solid.elastic_solver: a blow-up is reported with step, time and parti
     CHECK(s.particles().positions() == last);
   }
   CHECK(thrown);
+}
+
+TEST_CASE("solid.elastic_solver: a body moving rigidly faster than its P-wave speed is not a blow-up") {
+  const auto p = rubber();
+  auto set = block();
+  const Vec<2> fast(3 * p.p_wave_speed(), 0);
+  for (auto& v : set.velocities()) v = fast;
+  ElasticSolver<2> s(std::move(set), p);
+  const Vec<2> x0 = s.particles().positions()[5];
+  for (int k = 0; k < 50; ++k) s.step();
+  CHECK((s.particles().positions()[5] - x0 - s.time() * fast).norm() < 1e-9 * fast.norm() * s.time());
+  for (const auto& sigma : s.stresses()) CHECK(sigma.norm() < 1e-6 * p.youngs_modulus);
 }
 
 TEST_CASE("solid.elastic_solver: advance_by sub-steps a fluid step exactly") {

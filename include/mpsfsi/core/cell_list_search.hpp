@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mpsfsi/core/detail/csr_builder.hpp"
+#include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
@@ -37,7 +38,7 @@ class CellListSearch {
   explicit CellListSearch(Scalar radius) : radius_(radius) {
     if (!(radius > 0) || !std::isfinite(radius))
       detail::throw_invalid("CellListSearch", "search radius must be positive and finite, got " +
-                                                  std::to_string(radius));
+                                                  detail::format_number(radius));
   }
 
   Scalar radius() const { return radius_; }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mpsfsi/core/detail/csr_builder.hpp"
+#include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/detail/nanoflann_compat.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
@@ -42,7 +43,7 @@ class KdTreeSearch {
   explicit KdTreeSearch(Scalar radius, std::size_t leaf_max_size = 16) : radius_(radius), leaf_(leaf_max_size) {
     if (!(radius > 0) || !std::isfinite(radius))
       detail::throw_invalid("KdTreeSearch", "search radius must be positive and finite, got " +
-                                                std::to_string(radius));
+                                                detail::format_number(radius));
     if (leaf_max_size == 0) detail::throw_invalid("KdTreeSearch", "leaf size must be positive");
   }
 

@@ -145,6 +145,30 @@ class ParticleSet {
   template <class F>
   void for_each_int_field(F&& f) const { visit(ints_, f); }
 
+  // Passes every array and the id counter to a checkpoint archive (io/checkpoint.hpp), which
+  // writes or overwrites them; the extra fields' names are labels that must match on reading.
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    a.array(position_);
+    a.array(velocity_);
+    a.array(kind_);
+    a.array(id_);
+    a.value(next_id_);
+    for_each_store([&a](auto& store) {
+      std::uint64_t count = store.data.size();
+      a.value(count);  // overwritten when reading
+      if (count != store.data.size())
+        detail::throw_invalid("ParticleSet::checkpoint_state", "the checkpoint has " + std::to_string(count) +
+                                                                   " fields of a type of which this set has " +
+                                                                   std::to_string(store.data.size()));
+      for (std::size_t s = 0; s < store.data.size(); ++s) {
+        a.label(store.names[s]);
+        a.array(store.data[s]);
+      }
+    });
+    validate();
+  }
+
   // Reorders every field: particle k after the call is particle new_to_old[k] before it.
   void permute(const std::vector<Index>& new_to_old) {
     if (new_to_old.size() != size())

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -42,6 +43,14 @@ inline Scalar squared_distance(const Vec<Dim, Scalar>& a, const Vec<Dim, Scalar>
     s += d * d;
   }
   return s;
+}
+
+// Index of the first entry with a NaN or infinite component, or values.size() if there is none.
+template <int Dim, class Scalar>
+std::size_t first_non_finite(const VecArray<Dim, Scalar>& values) {
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!values[i].allFinite()) return i;
+  return values.size();
 }
 
 }  // namespace detail

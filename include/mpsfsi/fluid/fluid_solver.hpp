@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mpsfsi/core/cell_list_search.hpp"
+#include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/filter_neighbors.hpp"
 #include "mpsfsi/core/neighbor_search.hpp"
@@ -104,6 +105,7 @@ class FluidSolver {
   // produce non-finite or runaway velocities or the PPE does not converge; the state is then
   // the one before the step.
   void step() {
+    check_external_acceleration();
     auto tick = clock::now();
     if (step_count_ > 0) update_neighbors();
     timings_.search = lap_time(tick);
@@ -147,7 +149,7 @@ class FluidSolver {
             ppe_.enclosed().begin(), ppe_.enclosed().end(),
             [&](Index k) { return kind[static_cast<std::size_t>(k)] == ParticleKind::fluid; }));
         throw SimulationError("FluidSolver: at step " + std::to_string(step_count_ + 1) + " (t = " +
-                                  std::to_string(time_ + dt) + ") " + std::to_string(ppe_.enclosed().size()) +
+                                  detail::format_number(time_ + dt) + " s) " + std::to_string(ppe_.enclosed().size()) +
                                   " particles, among them particle " + std::to_string(i) + " (id " +
                                   std::to_string(set_.ids()[i]) + ") at " + format_position(x[i]) +
                                   ", form a region that touches no free surface: its pressure is undetermined "
@@ -166,8 +168,8 @@ class FluidSolver {
     timings_.ppe_solve = lap_time(tick);
     if (!report_.converged || !solution_.allFinite())
       throw SimulationError("FluidSolver: PPE did not converge at step " + std::to_string(step_count_ + 1) +
-                                " (t = " + std::to_string(time_ + dt) + "): " + std::to_string(report_.iterations) +
-                                " iterations, relative residual " + std::to_string(report_.relative_residual),
+                                " (t = " + detail::format_number(time_ + dt) + " s): " + std::to_string(report_.iterations) +
+                                " iterations, relative residual " + detail::format_number(report_.relative_residual),
                             step_count_ + 1, time_ + dt, -1);
     new_pressure_.assign(n, 0.0);
     for (std::size_t r = 0; r < ppe_.num_unknowns(); ++r) {
@@ -185,9 +187,9 @@ class FluidSolver {
       const vec_type v = u_star_[i] - (dt / rho) * grad_p_[i];
       if (!v.allFinite() || v.norm() > speed_limit)
         throw SimulationError("FluidSolver: blow-up at step " + std::to_string(step_count_ + 1) + " (t = " +
-                                  std::to_string(time_ + dt) + "): particle " + std::to_string(i) + " (id " +
-                                  std::to_string(set_.ids()[i]) + ") would move at " + std::to_string(v.norm()) +
-                                  " m/s, limit " + std::to_string(speed_limit) + " m/s",
+                                  detail::format_number(time_ + dt) + " s): particle " + std::to_string(i) + " (id " +
+                                  std::to_string(set_.ids()[i]) + ") would move at " + detail::format_number(v.norm()) +
+                                  " m/s, limit " + detail::format_number(speed_limit) + " m/s",
                               step_count_ + 1, time_ + dt, static_cast<long long>(i));
     }
     MPSFSI_OMP(parallel for schedule(static))
@@ -247,6 +249,26 @@ class FluidSolver {
   const MpsConstants<double>& laplacian_constants() const { return c_lap_; }
   const NeighborList& neighbors() const { return list_all_; }
 
+  // Checkpoints (io/checkpoint.hpp: write_checkpoint, read_checkpoint). The state a step depends
+  // on: the particles with every field (pressure is the PPE's warm start), the external
+  // acceleration, the clock and the counters. Neighbour lists are rebuilt from the positions
+  // (checkpoint_restored); everything else is recomputed within each step.
+  static constexpr const char* checkpoint_kind = "FluidSolver";
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    set_.checkpoint_state(a);
+    a.array(external_);
+    a.value(time_);
+    a.value(last_dt_);
+    a.value(reference_speed_);
+    a.value(step_count_);
+    a.value(enclosed_steps_);
+  }
+  void checkpoint_restored() {
+    check_external_acceleration();
+    update_neighbors();
+  }
+
  private:
   using clock = std::chrono::steady_clock;
   static double lap_time(clock::time_point& t) {
@@ -257,7 +279,7 @@ class FluidSolver {
   }
   static std::string format_position(const vec_type& v) {
     std::string s = "(";
-    for (int k = 0; k < Dim; ++k) s += (k ? ", " : "") + std::to_string(v[k]);
+    for (int k = 0; k < Dim; ++k) s += (k ? ", " : "") + detail::format_number(v[k]);
     return s + ")";
   }
   static double radius_of(const parameters_type& p) {
@@ -291,6 +313,18 @@ class FluidSolver {
   }
   const NeighborList& short_all() const { return short_lists_ ? short_all_ : list_all_; }
 
+  // external_acceleration() is written by the caller between steps: a wrong size or a non-finite
+  // entry is bad input, named here rather than surfacing later as a PPE that does not converge.
+  void check_external_acceleration() const {
+    if (external_.size() != set_.size())
+      detail::throw_invalid("FluidSolver::step", "external_acceleration() has " + std::to_string(external_.size()) +
+                                                     " entries for " + std::to_string(set_.size()) + " particles");
+    const auto i = detail::first_non_finite(external_);
+    if (i < external_.size())
+      detail::throw_invalid("FluidSolver::step", "external acceleration of particle " + std::to_string(i) + " (id " +
+                                                     std::to_string(set_.ids()[i]) + ") is not finite");
+  }
+
   void check_overlaps() const {
     const double min_distance = 1e-3 * p_.l0;
     for (std::size_t i = 0; i < set_.size(); ++i)
@@ -304,9 +338,9 @@ class FluidSolver {
     const double limit = stable_dt();
     if (p_.dt <= 0) return p_.max_dt > 0 ? std::min(limit, p_.max_dt) : limit;
     if (p_.dt > limit) {
-      const std::string msg = "FluidSolver: time step " + std::to_string(p_.dt) + " s exceeds the stability limit " +
-                              std::to_string(limit) + " s (Courant " + std::to_string(p_.courant) +
-                              ", viscous " + std::to_string(p_.viscous_number) + ") at step " +
+      const std::string msg = "FluidSolver: time step " + detail::format_number(p_.dt) + " s exceeds the stability limit " +
+                              detail::format_number(limit) + " s (Courant " + detail::format_number(p_.courant) +
+                              ", viscous " + detail::format_number(p_.viscous_number) + ") at step " +
                               std::to_string(step_count_ + 1);
       if (!p_.warn_only_on_unstable_dt) {
         if (step_count_ == 0) detail::throw_invalid("FluidSolver", msg);

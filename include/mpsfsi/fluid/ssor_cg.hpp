@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/fluid/linear_solver.hpp"
@@ -92,7 +93,7 @@ class SsorCg {
   double omega = 1.6;  // relaxation factor in (0, 2); 1.6-1.7 measured best on the 2D PPE
 
   SolveReport solve(const PpeMatrix& a, const PpeVector& b, PpeVector& x, double tolerance, int max_iterations) {
-    if (!(omega > 0 && omega < 2)) detail::throw_invalid("SsorCg", "omega must lie in (0, 2), got " + std::to_string(omega));
+    if (!(omega > 0 && omega < 2)) detail::throw_invalid("SsorCg", "omega must lie in (0, 2), got " + detail::format_number(omega));
     const auto n = static_cast<std::int64_t>(a.rows());
     if (x.size() != a.rows()) x = PpeVector::Zero(a.rows());
     const double bb = b.squaredNorm();

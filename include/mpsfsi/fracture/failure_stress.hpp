@@ -34,10 +34,13 @@ namespace mpsfsi {
 //   the first cut started second cracks 3-4 l0 beside the first in three of the five bending
 //   cases. Crack faces are not read outside: at a crack tip the field is singular, and a fit
 //   extrapolated into the crack reads noise (it branched the crack of the bending study at
-//   mid-height). Nor are loaded particles (contact, external force such as the FSI load): a fit
-//   extrapolated to a face under point loads reads their spikes (it cracked the top beside the
-//   indenter, and shattered the ice beam under the droplet). The read-out is meant for
-//   traction-free faces.
+//   mid-height). Nor are loaded particles (`loaded(i)`; ElasticSolver: in contact, or having
+//   carried an external force such as the FSI load at any step so far): a fit extrapolated to a
+//   face under point loads reads their spikes (it cracked the top beside the indenter), and the
+//   spikes stay in the field after the load is gone. A droplet's impact loads the ice beam's top
+//   for one fluid step and then leaves it at zero pressure: read outside from then on, that face
+//   fails one solid step later and the failures run along the whole beam (docs/validation/fsi.md).
+//   The read-out is meant for faces that stay traction-free.
 template <int Dim>
 class FailureStressReadout {
  public:
@@ -83,6 +86,15 @@ class FailureStressReadout {
     if (!at_surface) return averaged_;
     average_pass(point, averaged_, bonds, s.self_weight, true, true, smoothed_);
     return smoothed_;
+  }
+
+  // Checkpoints (io/checkpoint.hpp): what the first read fixed (normals, surface flags, bond
+  // weights); the rest is recomputed at every read.
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    a.array(normal_);
+    a.array(initial_weight_);
+    a.array(on_surface_);
   }
 
  private:

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mpsfsi/core/cell_list_search.hpp"
+#include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/fsi/coupling_parameters.hpp"
@@ -192,7 +193,7 @@ class FsiCoupler {
     const double l0_f = fp.l0, l0_s = solid.parameters().l0;
     if (std::abs(l0_f - l0_s) > 1e-9 * l0_f)
       detail::throw_invalid("FsiCoupler", "the fluid and the structure have different particle spacings (l0 = " +
-                                              std::to_string(l0_f) + " and " + std::to_string(l0_s) + " m)");
+                                              detail::format_number(l0_f) + " and " + detail::format_number(l0_s) + " m)");
     const auto& sp = solid.particles();
     structure_normals(solid.bonds(), sp.positions(), structure_n0(solid), c.surface_threshold, normal, on_surface);
     const std::size_t start = set.size();
@@ -318,7 +319,7 @@ class FsiCoupler {
     }
     throw SimulationError("FsiCoupler: the sub-iterated coupling did not converge in " +
                               std::to_string(scheme_.max_iterations) + " iterations at step " +
-                              std::to_string(step_count_ + 1) + " (t = " + std::to_string(fluid_.time()) + ")",
+                              std::to_string(step_count_ + 1) + " (t = " + detail::format_number(fluid_.time()) + " s)",
                           step_count_ + 1, fluid_.time(), -1);
   }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/kernels/weight.hpp"
@@ -31,11 +32,11 @@ MpsConstants<Scalar> ideal_lattice_constants(Scalar l0, Scalar re) {
   check_weight<Weight>();
   if (!(l0 > 0) || !std::isfinite(l0))
     detail::throw_invalid("ideal_lattice_constants", "particle spacing l0 must be positive, got " +
-                                                         std::to_string(l0));
+                                                         detail::format_number(l0));
   if (!(re > l0) || !std::isfinite(re))
     detail::throw_invalid("ideal_lattice_constants",
-                          "effective radius re must exceed l0 (re = " + std::to_string(re) +
-                              ", l0 = " + std::to_string(l0) + ")");
+                          "effective radius re must exceed l0 (re = " + detail::format_number(re) +
+                              ", l0 = " + detail::format_number(l0) + ")");
   const int m = static_cast<int>(std::ceil(re / l0));
   const int mz = (Dim == 3) ? m : 0;
   Scalar n0 = 0, wr2 = 0;

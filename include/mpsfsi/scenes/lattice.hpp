@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/core/types.hpp"
@@ -26,7 +27,7 @@ ParticleSet<Dim, Scalar> lattice_box(const typename ParticleSet<Dim, Scalar>::ve
                                      const typename ParticleSet<Dim, Scalar>::vec_type& upper, Scalar l0,
                                      ParticleKind kind = ParticleKind::fluid) {
   if (!(l0 > 0) || !std::isfinite(l0))
-    detail::throw_invalid("scenes::lattice_box", "spacing l0 must be positive, got " + std::to_string(l0));
+    detail::throw_invalid("scenes::lattice_box", "spacing l0 must be positive, got " + detail::format_number(l0));
   if (!lower.allFinite() || !upper.allFinite() || ((upper - lower).array() < 0).any())
     detail::throw_invalid("scenes::lattice_box", "box corners must be finite with lower <= upper");
   std::int64_t count[3] = {1, 1, 1};

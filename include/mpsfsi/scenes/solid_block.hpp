@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/scenes/lattice.hpp"
@@ -19,14 +20,14 @@ template <int Dim, class Scalar = double>
 ParticleSet<Dim, Scalar> material_block(const typename ParticleSet<Dim, Scalar>::vec_type& lower,
                                         const typename ParticleSet<Dim, Scalar>::vec_type& upper, Scalar l0) {
   if (!(l0 > 0) || !std::isfinite(l0))
-    detail::throw_invalid("scenes::material_block", "spacing l0 must be positive, got " + std::to_string(l0));
+    detail::throw_invalid("scenes::material_block", "spacing l0 must be positive, got " + detail::format_number(l0));
   for (int k = 0; k < Dim; ++k) {
     const Scalar cells = (upper[k] - lower[k]) / l0;
     if (!(cells >= Scalar(1) - Scalar(1e-6)) || std::abs(cells - std::round(cells)) > Scalar(1e-6))
       detail::throw_invalid("scenes::material_block", "side " + std::to_string(k) + " (" +
-                                                          std::to_string(upper[k] - lower[k]) +
+                                                          detail::format_number(upper[k] - lower[k]) +
                                                           " m) is not a positive whole number of spacings l0 = " +
-                                                          std::to_string(l0));
+                                                          detail::format_number(l0));
   }
   const Vec<Dim, Scalar> half = Vec<Dim, Scalar>::Constant(l0 / 2);
   return lattice_box<Dim, Scalar>(lower + half, upper - half, l0, ParticleKind::solid);

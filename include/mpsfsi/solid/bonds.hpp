@@ -135,6 +135,19 @@ class BondList {
 
   std::size_t num_cut() const { return cut_count_; }  // pairs
 
+  // Checkpoints (io/checkpoint.hpp): which bonds are cut. The bond graph itself is rebuilt from
+  // the reference positions by the solver that reads.
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    const std::size_t bonds = neighbor_.size(), particles = intact_count_.size();
+    a.array(beta_);
+    a.array(intact_);
+    a.array(intact_count_);
+    a.value(cut_count_);
+    if (beta_.size() != bonds || intact_.size() != bonds || intact_count_.size() != particles)
+      detail::throw_invalid("BondList::checkpoint_state", "the checkpoint's bonds do not match this solid's");
+  }
+
  private:
   std::vector<Offset> offsets_{0};
   std::vector<Index> neighbor_;

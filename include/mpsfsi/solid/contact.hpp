@@ -21,6 +21,7 @@ namespace mpsfsi {
 //   void add_forces(const VecArray& x, const VecArray& v, const BondList&, VecArray& force);  // adds
 //   Scalar energy(const VecArray& x, const BondList&) const;
 //   std::size_t active_pairs() const;
+//   template <class Archive> void checkpoint_state(Archive&);  // only for checkpoints
 
 // No contact at all (a single body that never breaks, or a user who handles it elsewhere).
 struct NoContact {
@@ -35,6 +36,8 @@ struct NoContact {
   template <class X, class B>
   double energy(const X&, const B&) const { return 0; }
   std::size_t active_pairs() const { return 0; }
+  template <class Archive>
+  void checkpoint_state(Archive&) {}
 };
 
 // Frictionless penalty contact between particles that are not joined by an intact bond:
@@ -110,6 +113,19 @@ class PenaltyContact {
   std::size_t active_pairs() const { return active_; }
   std::size_t candidate_pairs() const { return list_.num_pairs() / 2; }
   std::size_t rebuilds() const { return rebuilds_; }
+
+  // Checkpoints (io/checkpoint.hpp): the Verlet list and where it was built, so that the pairs
+  // are summed in the same order after a restart.
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    a.array(list_.offsets);
+    a.array(list_.indices);
+    a.array(list_.distances);
+    a.array(built_at_);
+    a.value(cuts_at_build_);
+    a.value(active_);
+    a.value(rebuilds_);
+  }
 
  private:
   bool needs_rebuild(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds) const {

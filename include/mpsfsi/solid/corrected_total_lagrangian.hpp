@@ -61,6 +61,13 @@ class CorrectedTotalLagrangian {
     packed_.build(fit_, bonds);
   }
 
+  // Checkpoints (io/checkpoint.hpp): the fits; the packed copy is rebuilt from them.
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    fit_.checkpoint_state(a);
+  }
+  void checkpoint_restored(const BondList<Dim, Scalar>& bonds) { packed_.build(fit_, bonds); }
+
   // Refits the particles whose bonds were cut.
   void bonds_changed(const BondList<Dim, Scalar>& bonds, const std::vector<std::size_t>& particles) {
     for (const std::size_t i : particles) {

@@ -151,6 +151,16 @@ class DeformationFit {
   Eigen::Ref<const vec_type> gradient_coefficient(Offset b) const {
     return coeff_[static_cast<std::size_t>(b)].template head<Dim>();
   }
+  // Checkpoints (io/checkpoint.hpp): the fits as they are after the cuts so far, and the intact
+  // neighbourhoods' moments the weak-direction floor refers to.
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    a.value(inv_l0_);
+    a.array(reference_moment_);
+    a.array(coeff_);
+    a.array(gradient_sum_);
+  }
+
   const std::vector<basis_type>& coefficients() const { return coeff_; }
   const vec_type& gradient_sum(std::size_t i) const { return gradient_sum_[i]; }
 

@@ -8,10 +8,12 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "mpsfsi/core/cell_list_search.hpp"
+#include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/particle_set.hpp"
@@ -103,7 +105,8 @@ class ElasticSolver {
   // Takes the particles (all become ParticleKind::solid; their positions are the reference
   // configuration, their velocities the initial ones), the parameters and optionally a body id
   // per particle (default: one body). Throws InvalidInput on an empty set, non-finite values,
-  // overlapping particles (closer than l0/2) or missing/invalid parameters.
+  // overlapping particles (closer than l0/2), a spacing that disagrees with l0 (see check_spacing)
+  // or missing/invalid parameters.
   ElasticSolver(ParticleSet<Dim> particles, parameters_type params, std::vector<std::int32_t> body = {})
       : p_(std::move(params)), set_(std::move(particles)) {
     p_.validate();
@@ -114,20 +117,22 @@ class ElasticSolver {
     if (body.size() != n)
       detail::throw_invalid("ElasticSolver", "got " + std::to_string(body.size()) + " body ids for " +
                                                  std::to_string(n) + " particles");
+    if (p_.bond_viscosity < 0) p_.bond_viscosity = failure_type::enabled ? p_.fracture_bond_viscosity : 0;
     if (failure_type::enabled && std::isinf(p_.tensile_strength))
       detail::throw_invalid("ElasticSolver", "the failure criterion needs tensile_strength (sigma_f), which is not set");
     std::fill(set_.kinds().begin(), set_.kinds().end(), ParticleKind::solid);
-    check_overlaps();
+    check_spacing();
     if (p_.dt > p_.max_stable_dt()) {
-      const std::string what = "dt = " + std::to_string(p_.dt) + " s exceeds the stability limit " +
-                               std::to_string(p_.max_stable_dt()) + " s (max_courant l0 / c, c = " +
-                               std::to_string(p_.signal_speed()) + " m/s)";
+      const std::string what = "dt = " + detail::format_number(p_.dt) + " s exceeds the stability limit " +
+                               detail::format_number(p_.max_stable_dt()) + " s (max_courant l0 / c, c = " +
+                               detail::format_number(p_.signal_speed()) + " m/s)";
       if (!p_.warn_only_on_unstable_dt) detail::throw_invalid("ElasticSolver", what);
       std::cerr << "warning: ElasticSolver: " << what << '\n';
     }
     reference_ = set_.positions();
     body_ = set_.template add_field<std::int32_t>("body");
     set_.field(body_) = body;
+    number_bodies(body);
     constraint_field_ = set_.template add_field<std::int32_t>("constraint");
     displacement_ = set_.template add_field<vec_type>("displacement");
     stress_field_ = set_.template add_field<mat_type>("stress");
@@ -155,15 +160,16 @@ class ElasticSolver {
   // --- Boundary conditions (may be changed between steps) ---
 
   // Fixes particle i where it is (prescribed velocity zero).
-  void clamp(std::size_t i) { prescribe_velocity(i, vec_type::Zero()); }
+  void clamp(std::size_t i) {
+    check_index(i, "clamp");
+    set_prescribed(i, vec_type::Zero());
+  }
 
   // Particle i moves with velocity v from now on (an indenter, a moving clamp).
   void prescribe_velocity(std::size_t i, const vec_type& v) {
     check_index(i, "prescribe_velocity");
     if (!v.allFinite()) detail::throw_invalid("ElasticSolver::prescribe_velocity", "velocity is not finite");
-    set_constraint(i, Constraint::prescribed);
-    prescribed_velocity_[i] = v;
-    set_.velocities()[i] = v;
+    set_prescribed(i, v);
   }
 
   // Particle i cannot move along `normal` (a simple support: only a reaction along normal).
@@ -198,9 +204,15 @@ class ElasticSolver {
   void step(double dt) {
     if (!(dt > 0) || !std::isfinite(dt)) detail::throw_invalid("ElasticSolver::step", "dt must be positive");
     if (dt > p_.max_stable_dt() * (1 + 1e-12) && !p_.warn_only_on_unstable_dt)
-      detail::throw_invalid("ElasticSolver::step", "dt = " + std::to_string(dt) + " s exceeds the stability limit " +
-                                                       std::to_string(p_.max_stable_dt()) + " s");
+      detail::throw_invalid("ElasticSolver::step", "dt = " + detail::format_number(dt) + " s exceeds the stability limit " +
+                                                       detail::format_number(p_.max_stable_dt()) + " s");
     const std::size_t n = set_.size();
+    if (external_.size() != n)
+      detail::throw_invalid("ElasticSolver::step", "external_force() has " + std::to_string(external_.size()) +
+                                                       " entries for " + std::to_string(n) + " particles");
+    if (const auto i = detail::first_non_finite(external_); i < n)
+      detail::throw_invalid("ElasticSolver::step", "external force on particle " + std::to_string(i) + " (id " +
+                                                       std::to_string(set_.ids()[i]) + ") is not finite");
     const auto& x = set_.positions();
     const auto& v = set_.velocities();
     const double decay = std::exp(-0.5 * p_.damping * dt);
@@ -218,28 +230,14 @@ class ElasticSolver {
     model_.kick(0.5 * dt);
     model_.drift(dt);
     compute_forces(x_next_, v_next_, force_next_);
-    const double limit = p_.blowup_speed_factor * p_.p_wave_speed();
     const double inv_m = 1 / mass_;
-    long long bad = -1;
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       const vec_type a = inv_m * (force_next_[i] + external_[i]) + p_.gravity;  // at the new positions
       v_next_[i] = constrained(i, decay * (v_next_[i] + 0.5 * dt * a));
-      if (!(v_next_[i].norm() <= limit) || !x_next_[i].allFinite()) {
-        MPSFSI_OMP(atomic write)
-        bad = static_cast<long long>(i);
-      }
     }
-    if (bad >= 0) {
-      const auto i = static_cast<std::size_t>(bad);
-      throw SimulationError("ElasticSolver: blow-up at step " + std::to_string(step_count_ + 1) + " (t = " +
-                                std::to_string(time_ + dt) + "): particle " + std::to_string(i) + " (id " +
-                                std::to_string(set_.ids()[i]) + ") would move at " +
-                                std::to_string(v_next_[i].norm()) + " m/s, limit " + std::to_string(limit) +
-                                " m/s (the P-wave speed times blowup_speed_factor)",
-                            step_count_ + 1, time_ + dt, bad);
-    }
+    check_blowup(dt);
     model_.kick(0.5 * dt);
     set_.positions().swap(x_next_);
     set_.velocities().swap(v_next_);
@@ -373,6 +371,48 @@ class ElasticSolver {
   // Directed bonds evaluated per force evaluation (the benchmark's unit of work).
   std::size_t bond_evaluations_per_step() const { return bonds_.num_bonds(); }
 
+  // Checkpoints (io/checkpoint.hpp: write_checkpoint, read_checkpoint). The state a step depends
+  // on: the particles with every field, the cut bonds, the stress model's fits (and frames), the
+  // contact list, the failure read-out's first-read data, the constraints and loads, the forces
+  // of the current positions, the failure log and the clock. The stress model and the contact
+  // policy provide checkpoint_state() for this.
+  static constexpr const char* checkpoint_kind = "ElasticSolver";
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    set_.checkpoint_state(a);
+    a.array(reference_);
+    bonds_.checkpoint_state(a);
+    model_.checkpoint_state(a);
+    contact_.checkpoint_state(a);
+    failure_readout_.checkpoint_state(a);
+    a.array(constraint_);
+    a.array(prescribed_velocity_);
+    a.array(external_);
+    a.array(force_);
+    a.array(carried_external_);
+    a.value(time_);
+    a.value(last_dt_);
+    a.value(step_count_);
+    a.value(first_failure_time_);
+    std::uint64_t failures = failure_log_.size();
+    a.value(failures);  // overwritten when reading
+    failure_log_.resize(static_cast<std::size_t>(failures));
+    for (auto& e : failure_log_) {
+      a.value(e.time);
+      a.value(e.particle);
+      a.value(e.sigma1);
+      a.value(e.normal);
+    }
+  }
+  void checkpoint_restored() {
+    const std::size_t n = set_.size();
+    if (reference_.size() != n || constraint_.size() != n || prescribed_velocity_.size() != n ||
+        external_.size() != n || force_.size() != n)
+      detail::throw_invalid("ElasticSolver", "the checkpoint's arrays do not match its particle count");
+    model_.checkpoint_restored(bonds_);
+    stresses_current_ = false;
+  }
+
  private:
   double choose_dt() const { return p_.dt > 0 ? p_.dt : p_.stable_dt(); }
 
@@ -380,6 +420,12 @@ class ElasticSolver {
     if (i >= set_.size())
       detail::throw_invalid(std::string("ElasticSolver::") + what,
                             "particle " + std::to_string(i) + " out of range (" + std::to_string(set_.size()) + ")");
+  }
+
+  void set_prescribed(std::size_t i, const vec_type& v) {
+    set_constraint(i, Constraint::prescribed);
+    prescribed_velocity_[i] = v;
+    set_.velocities()[i] = v;
   }
 
   void set_constraint(std::size_t i, Constraint c) {
@@ -434,7 +480,14 @@ class ElasticSolver {
     if constexpr (detail::has_deformation_fit<stress_model_type>::value)
       if (p_.failure_stress_at_surface) fit = &model_.fit();
     const auto& x = set_.positions();
-    const auto loaded = [&](std::size_t i) { return contact_.touching(x, i) || !external_[i].isZero(0.0); };
+    // An external force marks its particle as loaded from then on (failure_stress.hpp: why).
+    if (fit) {
+      carried_external_.resize(set_.size(), 0);
+      MPSFSI_OMP(parallel for schedule(static))
+      for (std::int64_t i = 0; i < static_cast<std::int64_t>(set_.size()); ++i)
+        if (!external_[static_cast<std::size_t>(i)].isZero(0.0)) carried_external_[static_cast<std::size_t>(i)] = 1;
+    }
+    const auto loaded = [&](std::size_t i) { return contact_.touching(x, i) || carried_external_[i] != 0; };
     return failure_readout_.read(stresses(), x, reference_, bonds_, fit, loaded,
                                  {p_.l0, context_.n0, Weight::value(p_.l0, p_.re()), context_.lame, p_.average_failure_stress});
   }
@@ -486,18 +539,92 @@ class ElasticSolver {
     stresses_current_ = false;
   }
 
-  void check_overlaps() const {
-    const double limit = 0.5 * p_.l0;
-    CellListSearch<Dim, double> search(limit);
+  // Throws SimulationError, before anything is committed, if a new position or velocity is not
+  // finite or a particle would move faster than blowup_speed_factor times the P-wave speed relative
+  // to the mean velocity of its body. Relative, because no elastic wave carries a particle past
+  // its neighbours that fast, while a body may translate or turn rigidly at any speed.
+  void check_blowup(double dt) {
+    const std::size_t n = set_.size();
+    std::fill(body_velocity_.begin(), body_velocity_.end(), vec_type::Zero());
+    for (std::size_t i = 0; i < n; ++i) body_velocity_[body_index_[i]] += v_next_[i];  // one pass, O(n)
+    for (std::size_t b = 0; b < body_velocity_.size(); ++b) body_velocity_[b] /= body_size_[b];
+    const double limit = p_.blowup_speed_factor * p_.p_wave_speed();
+    long long bad = -1;
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      const bool finite = x_next_[i].allFinite() && v_next_[i].allFinite();
+      if (!finite || !((v_next_[i] - body_velocity_[body_index_[i]]).norm() <= limit)) {
+        MPSFSI_OMP(atomic write)
+        bad = static_cast<long long>(i);
+      }
+    }
+    if (bad < 0) return;
+    const auto i = static_cast<std::size_t>(bad);
+    const vec_type relative = v_next_[i] - body_velocity_[body_index_[i]];
+    const std::string what =
+        !x_next_[i].allFinite() || !v_next_[i].allFinite()
+            ? std::string("its position or velocity is not finite")
+            : "it would move at " + detail::format_number(relative.norm()) + " m/s relative to its body (" +
+                  detail::format_number(v_next_[i].norm()) + " m/s absolute), limit " + detail::format_number(limit) +
+                  " m/s (the P-wave speed times blowup_speed_factor)";
+    throw SimulationError("ElasticSolver: blow-up at step " + std::to_string(step_count_ + 1) + " (t = " +
+                              detail::format_number(time_ + dt) + " s): particle " + std::to_string(i) + " (id " +
+                              std::to_string(set_.ids()[i]) + "): " + what,
+                          step_count_ + 1, time_ + dt, bad);
+  }
+
+  // Dense body numbers 0, 1, ... in order of first appearance, and the particle count of each.
+  void number_bodies(const std::vector<std::int32_t>& body) {
+    std::unordered_map<std::int32_t, std::size_t> number;
+    body_index_.resize(body.size());
+    for (std::size_t i = 0; i < body.size(); ++i) {
+      const auto [it, added] = number.try_emplace(body[i], number.size());
+      if (added) body_size_.push_back(0);
+      body_index_[i] = it->second;
+      body_size_[it->second] += 1;
+    }
+    body_velocity_.assign(number.size(), vec_type::Zero());
+  }
+
+  // Overlapping particles (closer than l0/2) and a spacing that disagrees with l0 are errors: the
+  // mass rho l0^d and the lattice constants (docs/theory.md, section 3) assume particles l0 apart.
+  // The spacing is the median distance to the nearest neighbour, exactly l0 on a lattice; 10 %
+  // off already puts the mass 21 % (2D) or 33 % (3D) off.
+  void check_spacing() const {
+    const std::size_t n = set_.size();
+    if (n < 2) return;
+    const double radius = 1.5 * p_.l0;
+    CellListSearch<Dim, double> search(radius);
     search.build(set_.positions());
     BasicNeighborList<double> close;
     search.self_query(set_.positions(), close, QueryOptions{true});
-    for (std::size_t i = 0; i < set_.size(); ++i)
-      for (Offset k = close.begin(i); k < close.end(i); ++k)
-        if (close.distances[static_cast<std::size_t>(k)] < limit * (1 - 1e-9))
-          detail::throw_invalid("ElasticSolver", "particles " + std::to_string(i) + " and " +
-                                                     std::to_string(close.indices[static_cast<std::size_t>(k)]) +
-                                                     " overlap (closer than l0/2)");
+    std::vector<double> nearest;
+    nearest.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (close.begin(i) == close.end(i)) continue;
+      double d = radius;
+      Index j = -1;
+      for (Offset k = close.begin(i); k < close.end(i); ++k) {
+        const double dk = close.distances[static_cast<std::size_t>(k)];
+        if (dk < d) d = dk, j = close.indices[static_cast<std::size_t>(k)];
+      }
+      if (d < 0.5 * p_.l0 * (1 - 1e-9))
+        detail::throw_invalid("ElasticSolver", "particles " + std::to_string(i) + " and " + std::to_string(j) +
+                                                   " overlap (closer than l0/2)");
+      nearest.push_back(d);
+    }
+    const std::string l0_text = "l0 = " + detail::format_number(p_.l0) + " m";
+    if (nearest.empty())
+      detail::throw_invalid("ElasticSolver", "no two particles are within 1.5 l0 of each other (" + l0_text +
+                                                 "): the particles are spaced more widely than l0");
+    const auto middle = nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2);
+    std::nth_element(nearest.begin(), middle, nearest.end());
+    const double spacing = *middle;
+    if (std::abs(spacing / p_.l0 - 1) > 0.1)
+      detail::throw_invalid("ElasticSolver", "the particles are " + detail::format_number(spacing) +
+                                                 " m apart (median distance to the nearest neighbour) but " +
+                                                 l0_text + ": build them l0 apart or set l0 to their spacing");
   }
 
   parameters_type p_;
@@ -516,6 +643,9 @@ class ElasticSolver {
   VecArray<Dim, double> prescribed_velocity_;  // the velocity, or the unit normal of a support
   VecArray<Dim, double> external_, force_;
   VecArray<Dim, double> x_next_, v_next_, force_next_;
+  std::vector<std::size_t> body_index_;  // dense body number of each particle
+  std::vector<double> body_size_;        // particles per body
+  VecArray<Dim, double> body_velocity_;  // mean velocity per body, for the blow-up check
   double time_ = 0, last_dt_ = 0;
   long long step_count_ = 0;
   bool stresses_current_ = false;
@@ -525,6 +655,7 @@ class ElasticSolver {
     vec_type normal;
   };
   std::vector<Failing> failing_;
+  std::vector<std::uint8_t> carried_external_;  // has carried an external force (surface read-out)
   FailureStressReadout<Dim> failure_readout_;
   std::vector<std::size_t> touched_, scratch_;
   std::vector<FailureEvent<Dim>> failure_log_;

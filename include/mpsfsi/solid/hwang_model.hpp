@@ -53,6 +53,18 @@ class HwangModel {
   }
 
   // Refits the particles whose bonds were cut and updates their reference number density.
+  // Checkpoints (io/checkpoint.hpp): the fits and each particle's frame, spin and torque.
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    fit_.checkpoint_state(a);
+    a.array(own_n0_);
+    a.array(strain_);
+    a.array(rotation_);
+    a.array(spin_);
+    a.array(torque_);
+  }
+  void checkpoint_restored(const BondList<Dim, Scalar>&) {}
+
   void bonds_changed(const BondList<Dim, Scalar>& bonds, const std::vector<std::size_t>& particles) {
     for (const std::size_t i : particles) {
       fit_.rebuild(bonds, i);

@@ -49,9 +49,12 @@ struct SolidParameters {
   //   f_i = zeta rho c V (d/n0) sum_j w0_ij ((v_j - v_i) . e_ij) e_ij / |r0_ij|,
   // c the P-wave speed. Central, so rigid motion is not damped and momentum and angular momentum
   // are kept; it damps grid-scale ringing at a ratio of about zeta pi/2 and a bending mode of
-  // wavelength L by about zeta (l0/L). Zero by default; brittle fracture needs some (a bond cut
-  // releases its strain energy into grid-scale waves that otherwise break bonds far from the crack).
-  Scalar bond_viscosity = 0;
+  // wavelength L by about zeta (l0/L). Negative (the default): the solver chooses, 0 without a
+  // failure criterion and fracture_bond_viscosity with one, because brittle fracture needs it (a
+  // bond cut releases its strain energy into grid-scale waves that otherwise break bonds far from
+  // the crack: docs/theory.md, section 3.6). ElasticSolver::parameters() shows the value used.
+  Scalar bond_viscosity = Scalar(-1);
+  static constexpr Scalar fracture_bond_viscosity = Scalar(0.2);
   // Penalty contact between particles that are not bonded (other bodies, cut bonds): a
   // repulsion k (d_c - r) along the line of centres for r < d_c, with d_c = contact_distance_ratio
   // l0 and k = contact_stiffness_ratio E l0^(d-2) (a spring as stiff as one particle's column of
@@ -124,7 +127,7 @@ struct SolidParameters {
     need(std::isfinite(dt) && dt >= 0, "dt must be >= 0 (0 selects the automatic step)");
     need(courant > 0 && courant <= max_courant, "courant must lie in (0, max_courant]");
     need(std::isfinite(damping) && damping >= 0, "damping must be >= 0");
-    need(std::isfinite(bond_viscosity) && bond_viscosity >= 0, "bond_viscosity must be >= 0");
+    need(std::isfinite(bond_viscosity), "bond_viscosity must be finite (negative: chosen by the solver)");
     need(std::isfinite(contact_distance_ratio) && contact_distance_ratio > 0, "contact_distance_ratio must be positive");
     need(std::isfinite(contact_stiffness_ratio) && contact_stiffness_ratio >= 0, "contact_stiffness_ratio must be >= 0");
     need(std::isfinite(contact_damping_ratio) && contact_damping_ratio >= 0, "contact_damping_ratio must be >= 0");

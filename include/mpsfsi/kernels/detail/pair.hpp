@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <string>
 
+#include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/types.hpp"
@@ -34,8 +35,8 @@ inline void require_same_size(const A& a, const B& b, const char* where, const c
 template <class Scalar>
 inline void require_positive_constants(Scalar re, Scalar n0, const char* where) {
   if (!(re > 0) || !(n0 > 0))
-    throw_invalid(where, "re and n0 must be positive (re = " + std::to_string(re) +
-                             ", n0 = " + std::to_string(n0) + ")");
+    throw_invalid(where, "re and n0 must be positive (re = " + detail::format_number(re) +
+                             ", n0 = " + detail::format_number(n0) + ")");
 }
 
 }  // namespace mpsfsi::detail
