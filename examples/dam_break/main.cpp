@@ -4,12 +4,15 @@
 // residual column height, and prints them against the experiment's scaling. `dam_break --help`
 // lists the options.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <mpsfsi/fluid/fluid_solver.hpp>
+#include <mpsfsi/io/checkpoint.hpp>
 #include <mpsfsi/io/csv_writer.hpp>
 #include <mpsfsi/io/progress.hpp>
 #include <mpsfsi/io/pvd_writer.hpp>
@@ -17,6 +20,7 @@
 #include <mpsfsi/scenes/dam_break.hpp>
 
 #include "common/case_options.hpp"
+#include "common/run_checkpoints.hpp"
 
 using namespace mpsfsi;
 
@@ -28,7 +32,28 @@ struct Options {
   double dt = -1;       // negative: 2e-4 s in 2D, automatic in 3D; 0: automatic
   double end = 0.4;     // s
   double every = 0.02;  // s between snapshots
+  double checkpoint_every = 0;  // s between checkpoints; 0: only on Ctrl-C / SIGTERM
+  std::string restart;          // checkpoint to continue from
   std::string out = "out/dam_break";
+};
+
+// What the output loop has done so far, saved with the solver in each checkpoint so that a
+// restarted run writes the same files as one run straight through.
+struct OutputState {
+  long long frames = 0;              // snapshots written
+  double next_output = 0;            // simulated time of the next one
+  double wall = 0;                   // wall seconds in the solver so far (the CSV's wall_s)
+  std::vector<double> frame_times;   // simulated time of each snapshot (the PVD index)
+  std::uint64_t csv_rows = 0;        // rows of dam_break.csv
+
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    a.value(frames);
+    a.value(next_output);
+    a.value(wall);
+    a.array(frame_times);
+    a.value(csv_rows);
+  }
 };
 
 template <int Dim>
@@ -39,11 +64,19 @@ int run(const Options& o) {
   p.dt = o.dt;
   FluidSolver<Dim> solver(scenes::dam_break<Dim>(a, 2 * a, 4 * a, 0.6, o.l0, Dim == 3 ? 0.1 : 0.0), p);
   std::filesystem::create_directories(o.out);
+  OutputState state;
+  if (!o.restart.empty()) {
+    read_checkpoint(o.restart, solver, state);
+    std::printf("continuing from %s: step %lld, t = %g s\n", o.restart.c_str(), solver.step_count(), solver.time());
+  }
   PvdWriter pvd(o.out + "/dam_break.pvd");
-  CsvWriter csv(o.out + "/dam_break.csv", {"t", "T", "Z_over_a", "tau", "H_over_2a", "ppe_iterations", "wall_s"});
+  for (long long k = 0; k < state.frames; ++k)
+    pvd.add(state.frame_times[static_cast<std::size_t>(k)], numbered_file_name("dam_break", static_cast<std::size_t>(k)));
+  const std::vector<std::string> columns = {"t", "T", "Z_over_a", "tau", "H_over_2a", "ppe_iterations", "wall_s"};
+  CsvWriter csv = o.restart.empty() ? CsvWriter(o.out + "/dam_break.csv", columns)
+                                    : CsvWriter::continue_after(o.out + "/dam_break.csv", columns, state.csv_rows);
+  mpsfsi_examples::RunCheckpoints checkpoints(o.out, o.checkpoint_every);
   ProgressReporter progress(o.end);
-  std::size_t frame = 0;
-  double next_output = 0, wall = 0;
   const std::string dt_text =
       o.dt > 0 ? mpsfsi_examples::detail::format_number(o.dt) + " s" : "automatic (Courant 0.2)";
   std::printf("dam break %dD: %zu particles, l0 = %g m, dt = %s, to t = %g s\n", Dim, solver.particles().size(), o.l0,
@@ -54,20 +87,30 @@ int run(const Options& o) {
   std::printf("%8s %8s %8s %8s %8s\n", "t (s)", "T", "Z/a", "tau", "H/2a");
   for (;;) {
     const double t = solver.time();
-    if (t >= next_output - 1e-12) {
-      const std::string file = numbered_file_name("dam_break", frame++);
+    if (t >= state.next_output - 1e-12) {
+      const std::string file = numbered_file_name("dam_break", static_cast<std::size_t>(state.frames++));
       write_vtu(o.out + "/" + file, solver.particles());
       pvd.add(t, file);
+      state.frame_times.push_back(t);
       const double z = scenes::surge_front(solver.particles(), o.l0) / a;
       const double h = scenes::column_height(solver.particles(), o.l0) / (2 * a);
       csv.row({t, t * std::sqrt(2 * g / a), z, t * std::sqrt(g / a), h,
-               static_cast<double>(solver.last_solve().iterations), wall});
+               static_cast<double>(solver.last_solve().iterations), state.wall});
       std::printf("%8.4f %8.3f %8.3f %8.3f %8.3f\n", t, t * std::sqrt(2 * g / a), z, t * std::sqrt(g / a), h);
-      next_output += o.every;
+      state.next_output += o.every;
+    }
+    if (checkpoints.due(t) || checkpoints.stop_requested()) {
+      state.csv_rows = csv.rows();
+      const std::string path = checkpoints.write(solver, solver.step_count(), t, state);
+      std::fprintf(stderr, "checkpoint: %s (t = %g s)\n", path.c_str(), t);
+      if (checkpoints.stop_requested()) {
+        std::fprintf(stderr, "dam_break: stopped by a signal; continue with --restart %s\n", path.c_str());
+        return checkpoints.stop_exit_code();
+      }
     }
     if (t >= o.end - 1e-12) break;
     solver.step();
-    wall += solver.last_timings().total();
+    state.wall += solver.last_timings().total();
     progress.update(solver.step_count(), solver.time());
   }
   progress.finish();
@@ -87,6 +130,10 @@ int main(int argc, char** argv) try {
   cli.add("--dt", o.dt, "time step; 0: automatic (Courant 0.2); negative: 2e-4 in 2D, automatic in 3D", "s");
   cli.add("--end", o.end, "end time", "s")->check(positive());
   cli.add("--every", o.every, "interval between snapshots", "s")->check(positive());
+  cli.add("--checkpoint-every", o.checkpoint_every,
+          "simulated time between checkpoints (out/checkpoint_<step>.bin); 0: only on Ctrl-C / SIGTERM", "s")
+      ->check(mpsfsi_examples::non_negative());
+  cli.add("--restart", o.restart, "checkpoint to continue from (written by a run with the same options)");
   cli.add("--out", o.out, "output folder");
   if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
   if (o.l0 == 0) o.l0 = o.dim == 2 ? 0.005 : 0.02;

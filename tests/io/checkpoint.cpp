@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "mpsfsi/fluid/fluid_solver.hpp"
+#include "mpsfsi/fsi/fsi_coupler.hpp"
 #include "mpsfsi/io/vtu_writer.hpp"
 #include "mpsfsi/scenes/dam_break.hpp"
+#include "mpsfsi/scenes/hydrostatic_plate.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 
@@ -127,6 +129,52 @@ TEST_CASE("io.checkpoint: a breaking ice bar continued from a checkpoint past it
                                                 << " cut bonds by step " << end_step);
 }
 
+// A water column 0.05 m high on a clamped plate 0.1 m x 0.02 m (the hydrostatic-plate scene scaled
+// down, l0 = 1 cm, fluid step 1 ms), coupled by `Scheme`.
+template <class Scheme>
+FsiCoupler<FluidSolver<2>, ElasticSolver<2>, Scheme> small_plate() {
+  scenes::HydrostaticPlate scene;
+  scene.span = 0.1;
+  scene.water_height = 0.05;
+  scene.thickness = 0.02;
+  scene.youngs_modulus = 1e8;
+  const double l0 = 0.01;
+  SolidParameters<2> sp;
+  sp.l0 = l0;
+  scene.set_material(sp);
+  std::vector<std::size_t> clamped;
+  std::size_t middle = 0;
+  ElasticSolver<2> plate(scene.plate_particles(l0, clamped, middle), sp);
+  for (auto i : clamped) plate.clamp(i);
+  FluidParameters<2> fp;
+  fp.l0 = l0;
+  fp.dt = 1e-3;
+  return FsiCoupler<FluidSolver<2>, ElasticSolver<2>, Scheme>(scene.fluid_particles(l0), fp, std::move(plate));
+}
+
+TEST_CASE_TEMPLATE("io.checkpoint: a coupled plate continued from a checkpoint gives the same bits", Scheme,
+                   ExplicitPartitioned, SubIterated, InterfaceQuasiNewton) {
+  constexpr int steps = 12;
+  auto straight = small_plate<Scheme>();
+  for (int k = 0; k < steps; ++k) straight.step();
+  const std::string path = "io_checkpoint_plate.bin";
+  {
+    auto first_half = small_plate<Scheme>();
+    for (int k = 0; k < steps / 2; ++k) first_half.step();
+    write_checkpoint(path, first_half);
+  }
+  auto resumed = small_plate<Scheme>();
+  read_checkpoint(path, resumed);
+  for (int k = 0; k < steps / 2; ++k) resumed.step();
+  CHECK(resumed.step_count() == straight.step_count());
+  CHECK(resumed.time() == straight.time());
+  CHECK(resumed.last_iterations() == straight.last_iterations());
+  CHECK(resumed.fluid().particles().positions() == straight.fluid().particles().positions());
+  CHECK(resumed.fluid().pressure() == straight.fluid().pressure());
+  CHECK(resumed.solid().particles().positions() == straight.solid().particles().positions());
+  CHECK(resumed.solid().particles().velocities() == straight.solid().particles().velocities());
+}
+
 TEST_CASE("io.checkpoint: a file that does not match the solver, or is damaged, is a clear error") {
   auto solver = small_dam_break<2>();
   solver.step();
@@ -176,6 +224,34 @@ TEST_CASE("io.checkpoint: a file that does not match the solver, or is damaged, 
   SUBCASE("a missing file is an IoError") {
     CHECK_THROWS_AS(read_checkpoint("io_checkpoint_missing.bin", solver), IoError);
   }
+}
+
+// A program's own state rides along in the same file.
+struct Counters {
+  long long frames = 0;
+  std::vector<double> times;
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    a.value(frames);
+    a.array(times);
+  }
+};
+
+TEST_CASE("io.checkpoint: further objects are written after the solver and read back in order") {
+  auto solver = small_dam_break<2>();
+  solver.step();
+  Counters written{3, {0.0, 0.5, 1.0}};
+  write_checkpoint("io_checkpoint_extra.bin", solver, written);
+  auto target = small_dam_break<2>();
+  Counters read;
+  read_checkpoint("io_checkpoint_extra.bin", target, read);
+  CHECK(read.frames == 3);
+  CHECK(read.times == written.times);
+  CHECK(target.step_count() == 1);
+  auto other = small_dam_break<2>();
+  CHECK_THROWS_WITH_AS(read_checkpoint("io_checkpoint_extra.bin", other), doctest::Contains("data left over"),
+                       InvalidInput);
+  CHECK(other.step_count() == 0);
 }
 
 TEST_CASE("io.checkpoint: a write that fails leaves the previous checkpoint in place") {

@@ -89,4 +89,31 @@ TEST_CASE("io.csv: an unwritable path throws IoError with the path and the OS re
                        doctest::Contains(reason.c_str()), mpsfsi::IoError);
 }
 
+// A run restarted from a checkpoint continues its CSV after the rows it had at the checkpoint;
+// rows the stopped run wrote after it are dropped.
+TEST_CASE("io.csv: continue_after keeps the header and the first rows, then appends") {
+  const std::string path = "io_csv_continue.csv";
+  {
+    mpsfsi::CsvWriter csv(path, {"t", "x"});
+    for (int k = 0; k < 5; ++k) csv.row({0.1 * k, 2.0 * k});
+    CHECK(csv.rows() == 5);
+  }
+  {
+    auto csv = mpsfsi::CsvWriter::continue_after(path, {"t", "x"}, 3);
+    CHECK(csv.rows() == 3);
+    csv.row({0.3, 99.0});
+    CHECK(csv.rows() == 4);
+  }
+  const auto lines = read_lines(path);
+  REQUIRE(lines.size() == 5);
+  CHECK(lines[0] == "t,x");
+  CHECK(parse_row(lines[3]) == std::vector<double>{0.2, 4.0});
+  CHECK(parse_row(lines[4]) == std::vector<double>{0.3, 99.0});
+  CHECK_THROWS_WITH_AS(mpsfsi::CsvWriter::continue_after(path, {"t", "y"}, 1), doctest::Contains("header t,y"),
+                       mpsfsi::InvalidInput);
+  CHECK_THROWS_WITH_AS(mpsfsi::CsvWriter::continue_after(path, {"t", "x"}, 9),
+                       doctest::Contains("has 4 complete rows, not the 9"), mpsfsi::InvalidInput);
+  CHECK_THROWS_AS(mpsfsi::CsvWriter::continue_after("io_csv_missing.csv", {"t"}, 0), mpsfsi::IoError);
+}
+
 }  // TEST_SUITE("io")

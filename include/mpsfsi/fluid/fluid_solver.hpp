@@ -254,6 +254,7 @@ class FluidSolver {
   // acceleration, the clock and the counters. Neighbour lists are rebuilt from the positions
   // (checkpoint_restored); everything else is recomputed within each step.
   static constexpr const char* checkpoint_kind = "FluidSolver";
+  std::size_t checkpoint_particle_count() const { return set_.size(); }
   template <class Archive>
   void checkpoint_state(Archive& a) {
     set_.checkpoint_state(a);

@@ -79,7 +79,8 @@ class FsiCoupler {
                fluid_parameters),
         search_(c_.interface_radius_ratio * fluid_parameters.l0 + 0.5 * fluid_parameters.l0),
         tank_search_(0.25 * fluid_parameters.l0),
-        structure_n0_(structure_n0(solid_)) {
+        structure_n0_(structure_n0(solid_)),
+        quasi_newton_(quasi_newton_model(scheme_)) {
     if (c_.covered_surface_as_dummy) {
       // The tank's fixed walls: the fluid set's own wall and dummy particles, which do not move.
       const auto& set = fluid_.particles();
@@ -92,7 +93,6 @@ class FsiCoupler {
     if (c_.partial_wetting_correction)
       full_weight_ = full_wetting_weight<Weight, dimension, scalar_type>(fluid_.parameters().l0, re());
     last_omega_ = initial_omega(scheme_);
-    if constexpr (uses_quasi_newton<Scheme>) quasi_newton_ = QuasiNewtonModel(scheme_.reuse_steps, scheme_.max_columns);
     structure_acceleration_.assign(solid_.particles().size(), vec_type::Zero());
     load_.assign(solid_.particles().size(), vec_type::Zero());
     applied_force_.assign(solid_.particles().size(), vec_type::Zero());
@@ -141,6 +141,27 @@ class FsiCoupler {
   }
 
   double time() const { return fluid_.time(); }
+
+  // Checkpoints (io/checkpoint.hpp): both solvers, the user's applied force, the last load (the
+  // quasi-Newton step starts from it), the structure's acceleration (eq 10 reads it), the step
+  // count, the Aitken relaxation and the quasi-Newton columns kept across steps.
+  static constexpr const char* checkpoint_kind = "FsiCoupler";
+  std::size_t checkpoint_particle_count() const { return fluid_.particles().size(); }
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    fluid_.checkpoint_state(a);
+    solid_.checkpoint_state(a);
+    a.array(applied_force_);
+    a.array(load_);
+    a.array(structure_acceleration_);
+    a.value(step_count_);
+    a.value(last_omega_);
+    quasi_newton_.checkpoint_state(a);
+  }
+  void checkpoint_restored() {
+    fluid_.checkpoint_restored();
+    solid_.checkpoint_restored();
+  }
   long long step_count() const { return step_count_; }
   Fluid& fluid() { return fluid_; }
   const Fluid& fluid() const { return fluid_; }
@@ -330,6 +351,12 @@ class FsiCoupler {
   template <class S>
   static constexpr bool uses_quasi_newton = quasi_newton_trait<S>::value;
   using QuasiNewtonModel = InterfaceQuasiNewtonModel<dimension, scalar_type>;
+
+  template <class S>
+  static QuasiNewtonModel quasi_newton_model(const S& s) {
+    if constexpr (uses_quasi_newton<S>) return QuasiNewtonModel(s.reuse_steps, s.max_columns);
+    return QuasiNewtonModel();
+  }
 
   template <class S>
   static double initial_omega(const S& s) {

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <deque>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -74,7 +76,30 @@ class InterfaceQuasiNewtonModel {
 
   std::size_t columns() const { return columns_.size(); }
 
+  // Checkpoints (io/checkpoint.hpp): the step counter and the columns kept for the next steps;
+  // the rest is rebuilt within a step.
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    a.value(step_);
+    std::uint64_t count = columns_.size();
+    a.value(count);  // overwritten when reading
+    columns_.resize(static_cast<std::size_t>(count));
+    for (auto& c : columns_) {
+      a.value(c.step);
+      exchange(a, c.v);
+      exchange(a, c.w);
+    }
+  }
+
  private:
+  // Writes or reads a dynamic vector through a flat copy (the archive takes std::vector).
+  template <class Archive>
+  static void exchange(Archive& a, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& v) {
+    std::vector<Scalar> flat(v.data(), v.data() + v.size());
+    a.array(flat);
+    v = Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>(flat.data(), static_cast<Eigen::Index>(flat.size()));
+  }
+
   struct Column {
     Eigen::Matrix<Scalar, Eigen::Dynamic, 1> v, w;
     long long step = 0;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <typeinfo>
 #include <vector>
@@ -28,10 +29,11 @@
 // that passes each piece of its state to `a.value(x)` (one trivially copyable value),
 // `a.array(v)` (a std::vector of them) or `a.label(s)` (a name that must match on reading, such
 // as an output field's); the same function writes (the archive reads the members) and reads
-// (the archive overwrites them). `solver.particles()` gives the particle count of the header.
+// (the archive overwrites them). `checkpoint_particle_count()` gives the header's particle count
+// and `checkpoint_restored()` rebuilds what is derived after a read.
 //
-// The file (all integers little-endian as the machine writes them; the header records the byte
-// order through a known value):
+// The file (numbers in the writing machine's byte order, which the header records through a
+// known value):
 //   "MPSFSICP"  format version (u32)  header size (u64)  header  payload size (u64)  payload
 //   CRC-32 of header and payload (u32)
 // The header: byte-order mark (u32 0x01020304), solver kind, dimension (u32), scalar type name,
@@ -173,7 +175,7 @@ void checkpoint_header(CheckpointWriter& h, Solver& solver) {
   h.value(static_cast<std::uint32_t>(Solver::dimension));
   h.label(readable_type_name(typeid(typename Solver::scalar_type).name()));
   h.label(readable_type_name(typeid(Solver).name()));
-  h.value(static_cast<std::uint64_t>(solver.particles().size()));
+  h.value(static_cast<std::uint64_t>(solver.checkpoint_particle_count()));
 }
 
 inline std::vector<unsigned char> read_whole_file(const std::string& path) {
@@ -193,13 +195,16 @@ inline std::vector<unsigned char> read_whole_file(const std::string& path) {
 
 }  // namespace detail
 
-// Writes the solver's state to `path` (via `path.tmp`, renamed when complete). Throws IoError if
-// the file cannot be written; the previous file at `path`, if any, is then untouched.
-template <class Solver>
-void write_checkpoint(const std::string& path, Solver& solver) {
+// Writes the solver's state to `path` (via `path.tmp`, renamed when complete), followed by the
+// state of any further objects with a checkpoint_state member (a program's own counters, say).
+// Throws IoError if the file cannot be written; the previous file at `path`, if any, is then
+// untouched.
+template <class Solver, class... Extra>
+void write_checkpoint(const std::string& path, Solver& solver, Extra&... extra) {
   detail::CheckpointWriter header, payload;
   detail::checkpoint_header(header, solver);
   solver.checkpoint_state(payload);
+  (extra.checkpoint_state(payload), ...);
   std::uint32_t crc = detail::crc32_update(0, header.bytes().data(), header.bytes().size());
   crc = detail::crc32_update(crc, payload.bytes().data(), payload.bytes().size());
   const std::uint32_t version = checkpoint_format_version;
@@ -218,10 +223,11 @@ void write_checkpoint(const std::string& path, Solver& solver) {
 // Restores the solver's state from `path`. The solver must be built as the one that wrote it
 // (same kind, dimension, scalar type, policy bundle, particle count and fields); anything else,
 // and a truncated, corrupted or newer-format file, is an InvalidInput naming what does not
-// match. IoError if the file cannot be read. The solver is changed only once every check has
-// passed and the whole payload has been read.
-template <class Solver>
-void read_checkpoint(const std::string& path, Solver& solver) {
+// match. IoError if the file cannot be read. The solver (and the further objects, read in the
+// order write_checkpoint was given them) are changed only once every check has passed and the
+// whole payload has been read.
+template <class Solver, class... Extra>
+void read_checkpoint(const std::string& path, Solver& solver, Extra&... extra) {
   const std::vector<unsigned char> bytes = detail::read_whole_file(path);
   detail::CheckpointReader file(bytes.data(), bytes.size(), path);
   char magic[sizeof detail::checkpoint_magic] = {};
@@ -276,16 +282,19 @@ void read_checkpoint(const std::string& path, Solver& solver) {
     mismatch("the state of " + t, "is " + type + " (another policy bundle)");
   std::uint64_t particles = 0;
   header.value(particles);
-  if (particles != solver.particles().size())
-    mismatch(std::to_string(particles) + " particles", "has " + std::to_string(solver.particles().size()));
+  if (particles != solver.checkpoint_particle_count())
+    mismatch(std::to_string(particles) + " particles", "has " + std::to_string(solver.checkpoint_particle_count()));
 
   // Read into a copy, so that a payload that does not fit leaves the solver as it was.
   Solver restored = solver;
+  std::tuple<Extra...> restored_extra(extra...);
   detail::CheckpointReader payload(bytes.data() + payload_at, static_cast<std::size_t>(payload_size), path);
   restored.checkpoint_state(payload);
-  if (!payload.at_end()) payload.corrupt("data left over after the solver's state");
+  std::apply([&payload](auto&... e) { (e.checkpoint_state(payload), ...); }, restored_extra);
+  if (!payload.at_end()) payload.corrupt("data left over after the state it holds");
   restored.checkpoint_restored();
   solver = std::move(restored);
+  std::tie(extra...) = std::move(restored_extra);
 }
 
 }  // namespace mpsfsi

@@ -377,6 +377,7 @@ class ElasticSolver {
   // of the current positions, the failure log and the clock. The stress model and the contact
   // policy provide checkpoint_state() for this.
   static constexpr const char* checkpoint_kind = "ElasticSolver";
+  std::size_t checkpoint_particle_count() const { return set_.size(); }
   template <class Archive>
   void checkpoint_state(Archive& a) {
     set_.checkpoint_state(a);
