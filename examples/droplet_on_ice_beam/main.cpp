@@ -8,14 +8,17 @@
 // (the crack paths). `droplet_on_ice_beam --help` lists the options.
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <mpsfsi/fluid/fluid_solver.hpp>
 #include <mpsfsi/fracture/failure_criteria.hpp>
 #include <mpsfsi/fsi/fsi_coupler.hpp>
+#include <mpsfsi/io/checkpoint.hpp>
 #include <mpsfsi/io/csv_writer.hpp>
 #include <mpsfsi/io/progress.hpp>
 #include <mpsfsi/io/pvd_writer.hpp>
@@ -24,6 +27,7 @@
 #include <mpsfsi/solid/elastic_solver.hpp>
 
 #include "common/case_options.hpp"
+#include "common/run_checkpoints.hpp"
 #include "three_point_bending/bending_test.hpp"
 
 using namespace mpsfsi;
@@ -42,7 +46,28 @@ struct Options {
   // Where the criterion reads the stress (SolidParameters::failure_stress_at_surface); the
   // default is the library's.
   std::string failure_stress = "surface";
+  double checkpoint_every = 0;  // s between checkpoints; 0: only on Ctrl-C / SIGTERM
+  std::string restart;          // checkpoint to continue from (with --only)
   std::string out = "out/droplet_on_ice_beam";
+};
+
+// What the output loop has done so far, saved with the coupler in each checkpoint so that a
+// restarted run writes the same files as one run straight through.
+struct OutputState {
+  long long frames = 0;             // snapshots written
+  double next_output = 0;           // simulated time of the next one
+  std::vector<double> frame_times;  // simulated time of each snapshot (the PVD indexes)
+  std::uint64_t tip_rows = 0;       // rows of tip.csv
+  double max_tip = 0;               // largest |tip dy| so far
+
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    a.value(frames);
+    a.value(next_output);
+    a.array(frame_times);
+    a.value(tip_rows);
+    a.value(max_tip);
+  }
 };
 
 constexpr double beam_length = 0.5, beam_height = 0.05, droplet_size = 0.1;
@@ -52,6 +77,7 @@ struct RunSummary {
   double wall = 0, fluid = 0, solid = 0;
   std::size_t cut = 0, failures = 0;
   double first_failure = -1, max_tip = 0;
+  int stop_code = 0;  // 128 + signal when stopped by Ctrl-C / SIGTERM
 };
 
 // Beam particles x, y, sigma_xx, max principal stress, damage (one row each) at a snapshot.
@@ -108,9 +134,22 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
   FsiCoupler<FluidSolver<2>, ElasticSolver<2, Policies>, Scheme> c(std::move(droplet), fp, std::move(beam));
 
   std::filesystem::create_directories(dir);
-  PvdWriter fluid_pvd(dir + "/fluid.pvd"), beam_pvd(dir + "/beam.pvd");
-  CsvWriter tip_csv(dir + "/tip.csv", {"t", "tip_dx", "tip_dy", "cut_bonds", "force_x", "force_y"});
   const Vec<2> tip0 = c.solid().particles().positions()[tip];
+  OutputState state;
+  if (!o.restart.empty()) {
+    read_checkpoint(o.restart, c, state);
+    std::printf("continuing from %s: step %lld, t = %g s\n", o.restart.c_str(), c.step_count(), c.time());
+  }
+  PvdWriter fluid_pvd(dir + "/fluid.pvd"), beam_pvd(dir + "/beam.pvd");
+  for (long long k = 0; k < state.frames; ++k) {
+    const auto frame = static_cast<std::size_t>(k);
+    fluid_pvd.add(state.frame_times[frame], numbered_file_name("fluid", frame));
+    beam_pvd.add(state.frame_times[frame], numbered_file_name("beam", frame));
+  }
+  const std::vector<std::string> tip_columns = {"t", "tip_dx", "tip_dy", "cut_bonds", "force_x", "force_y"};
+  CsvWriter tip_csv = o.restart.empty() ? CsvWriter(dir + "/tip.csv", tip_columns)
+                                        : CsvWriter::continue_after(dir + "/tip.csv", tip_columns, state.tip_rows);
+  mpsfsi_examples::RunCheckpoints checkpoints(dir, o.checkpoint_every);
   std::printf("\n== %s fracture (%s coupling, plane %s): %zu droplet + %zu beam particles, l0 = %g m, dt_f = %g s, "
               "dt_s = %.3g s, bond viscosity %g\n",
               fracture ? "with" : "without", Scheme::name, o.plane.c_str(), c.structure_offset(),
@@ -119,16 +158,27 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
   ProgressReporter progress(o.end);
   const auto t0 = std::chrono::steady_clock::now();
   RunSummary s;
-  std::size_t frame = 0;
-  double next_output = 0;
   const double every = 1e-3;
   for (;;) {
     const double t = c.time();
+    // Checkpoints at the top of the loop: a restarted run writes this time's outputs again.
+    if (checkpoints.due(t) || checkpoints.stop_requested()) {
+      state.tip_rows = tip_csv.rows();
+      const std::string path = checkpoints.write(c, c.step_count(), t, state);
+      std::fprintf(stderr, "checkpoint: %s (t = %g s)\n", path.c_str(), t);
+      if (checkpoints.stop_requested()) {
+        std::fprintf(stderr, "droplet_on_ice_beam: stopped by a signal; continue with --only %s --restart %s\n",
+                     fracture ? "with" : "without", path.c_str());
+        s.stop_code = checkpoints.stop_exit_code();
+        return s;
+      }
+    }
     const Vec<2> d = c.solid().particles().positions()[tip] - tip0;
-    s.max_tip = std::max(s.max_tip, std::abs(d[1]));
+    state.max_tip = std::max(state.max_tip, std::abs(d[1]));
     tip_csv.row({t, d[0], d[1], static_cast<double>(c.solid().cut_bonds()), c.total_interface_force()[0],
                  c.total_interface_force()[1]});
-    if (t >= next_output - 1e-9) {
+    if (t >= state.next_output - 1e-9) {
+      const auto frame = static_cast<std::size_t>(state.frames);
       const std::string ff = numbered_file_name("fluid", frame), bf = numbered_file_name("beam", frame);
       write_vtu(dir + "/" + ff, c.fluid().particles());
       write_vtu(dir + "/" + bf, c.solid().output());
@@ -143,8 +193,9 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
       for (std::size_t i = 0; i < c.structure_offset(); ++i) fluid_csv.row({fx[i][0], fx[i][1], c.fluid().pressure()[i]});
       std::printf("%8.3f %11.4f %11.4f %9zu %9zu\n", 1e3 * t, 1e3 * d[1], 1e3 * d[0], c.solid().cut_bonds(),
                   c.solid().failure_events());
-      ++frame;
-      next_output += every;
+      state.frame_times.push_back(t);
+      ++state.frames;
+      state.next_output += every;
     }
     if (t >= o.end - 1e-9) break;
     c.step();
@@ -152,6 +203,7 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
   }
   progress.finish();
   s.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  s.max_tip = state.max_tip;
   s.fluid = c.fluid_seconds();
   s.solid = c.solid_seconds();
   s.cut = c.solid().cut_bonds();
@@ -184,8 +236,11 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
 
 template <class Scheme>
 int run_both(const Options& o) {
-  if (o.only != "with") run<SolidDefaults<2>, Scheme>(o, false, o.out + "/without_fracture");
-  if (o.only != "without") run<BrittleSolidPolicies<2>, Scheme>(o, true, o.out + "/with_fracture");
+  if (o.only != "with")
+    if (const auto s = run<SolidDefaults<2>, Scheme>(o, false, o.out + "/without_fracture"); s.stop_code) return s.stop_code;
+  if (o.only != "without")
+    if (const auto s = run<BrittleSolidPolicies<2>, Scheme>(o, true, o.out + "/with_fracture"); s.stop_code)
+      return s.stop_code;
   std::printf("\nwrote %s/{without,with}_fracture; render with python3 examples/droplet_on_ice_beam/plot.py %s\n",
               o.out.c_str(), o.out.c_str());
   return 0;
@@ -212,8 +267,16 @@ int main(int argc, char** argv) try {
   cli.add("--plane", o.plane, "2D plane model of the beam")->check(one_of({"stress", "strain"}));
   cli.add("--failure-stress", o.failure_stress, "where the failure criterion reads the stress")
       ->check(one_of({"centre", "surface"}));
+  cli.add("--checkpoint-every", o.checkpoint_every,
+          "simulated time between checkpoints (<run folder>/checkpoint_<step>.bin); 0: only on Ctrl-C / SIGTERM", "s")
+      ->check(mpsfsi_examples::non_negative());
+  cli.add("--restart", o.restart, "checkpoint to continue from, with --only naming its run (same options otherwise)");
   cli.add("--out", o.out, "output folder");
   if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
+  if (!o.restart.empty() && o.only.empty()) {
+    std::fprintf(stderr, "droplet_on_ice_beam: --restart needs --only with|without (the run the checkpoint belongs to)\n");
+    return 2;
+  }
   if (cli.print_case_if_requested()) return 0;
   std::filesystem::create_directories(o.out);
   cli.write_case(o.out);
