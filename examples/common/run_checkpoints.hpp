@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Checkpoints of a running example: at a simulated-time interval (--checkpoint-every) and when
-// the run is asked to stop (Ctrl-C, SIGTERM), into <out>/checkpoint_<step>.bin, written by
+// the run is asked to stop (Ctrl-C, SIGTERM), into <out>/<name>_<step>.bin (name "checkpoint"
+// unless the example runs several cases into one folder), written by
 // mpsfsi::write_checkpoint (a temporary file renamed when complete, so a kill at any moment
 // leaves the previous checkpoint valid). --restart FILE continues a run from one.
 #pragma once
@@ -22,7 +23,8 @@ class RunCheckpoints {
  public:
   // every: simulated seconds between checkpoints (0: only when asked to stop). Installs the
   // SIGINT and SIGTERM handlers, which let the current step finish.
-  RunCheckpoints(std::string out, double every) : out_(std::move(out)), every_(every) {
+  RunCheckpoints(std::string out, double every, std::string name = "checkpoint")
+      : out_(std::move(out)), name_(std::move(name)), every_(every) {
     std::signal(SIGINT, detail::request_stop);
     std::signal(SIGTERM, detail::request_stop);
   }
@@ -41,12 +43,12 @@ class RunCheckpoints {
   }
 
   // Writes the solver and the example's own state (objects with checkpoint_state) to
-  // <out>/checkpoint_<step>.bin and returns the path.
+  // <out>/<name>_<step>.bin and returns the path.
   template <class Solver, class... State>
   std::string write(Solver& solver, long long step, double t, State&... state) {
-    char name[64];
-    std::snprintf(name, sizeof name, "/checkpoint_%09lld.bin", step);
-    const std::string path = out_ + name;
+    char number[32];
+    std::snprintf(number, sizeof number, "_%09lld.bin", step);
+    const std::string path = out_ + "/" + name_ + number;
     mpsfsi::write_checkpoint(path, solver, state...);
     if (every_ > 0)
       while (next_ <= t + 1e-12) next_ += every_;
@@ -54,7 +56,7 @@ class RunCheckpoints {
   }
 
  private:
-  std::string out_;
+  std::string out_, name_;
   double every_;
   double next_ = -1;
 };

@@ -12,9 +12,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <mpsfsi/io/checkpoint.hpp>
 #include <mpsfsi/io/csv_writer.hpp>
 #include <mpsfsi/io/progress.hpp>
 #include <mpsfsi/io/pvd_writer.hpp>
@@ -22,6 +24,8 @@
 #include <mpsfsi/io/vtu_writer.hpp>
 #include <mpsfsi/scenes/solid_block.hpp>
 #include <mpsfsi/solid/elastic_solver.hpp>
+
+#include "common/run_checkpoints.hpp"
 
 namespace bending {
 
@@ -72,6 +76,12 @@ struct Options {
   double contact_damping = 0;          // SolidParameters::contact_damping_ratio
   std::string out;          // output directory; empty: no files
   bool progress = false;
+  // Checkpoints (examples/common/run_checkpoints.hpp): off unless `checkpoints` is set; then at
+  // `checkpoint_every` (s; 0: only on Ctrl-C / SIGTERM), into `out`. `restart`: a checkpoint of
+  // the same case and options to continue from.
+  bool checkpoints = false;
+  double checkpoint_every = 0;
+  std::string restart;
 };
 
 // The Young's modulus the solid is given in case `c`.
@@ -81,6 +91,35 @@ inline double input_modulus(const IceBeamCase& c, const Options& o) {
 
 struct HistoryRow {
   double t, indenter, deflection, bottom_deflection, load, sxx_top, sxx_bottom;
+};
+
+// The loading loop's own state, saved with the solver in each checkpoint so that a restarted run
+// gives the same results and files as one run straight through.
+struct LoopState {
+  double peak_load = 0, deflection_at_peak = 0, bottom_deflection_at_peak = 0, indenter_at_peak = 0, time_at_peak = 0;
+  double energy_at_failure = 0, indenter_work = 0, work_at_failure = 0, largest_balance = 0;
+  double after_peak_low = -1, next_snapshot = 0;
+  long long frames = 0;
+  std::vector<double> frame_times;  // the PVD index
+  std::vector<HistoryRow> history;
+
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    for (double* v : {&peak_load, &deflection_at_peak, &bottom_deflection_at_peak, &indenter_at_peak, &time_at_peak,
+                      &energy_at_failure, &indenter_work, &work_at_failure, &largest_balance, &after_peak_low,
+                      &next_snapshot})
+      a.value(*v);
+    a.value(frames);
+    a.array(frame_times);
+    // History rows through a flat copy (the archive takes vectors of numbers).
+    std::vector<double> flat;
+    for (const auto& h : history) flat.insert(flat.end(), {h.t, h.indenter, h.deflection, h.bottom_deflection, h.load, h.sxx_top, h.sxx_bottom});
+    a.array(flat);
+    if (flat.size() % 7 != 0) throw mpsfsi::InvalidInput("three_point_bending: the checkpoint's load history is damaged");
+    history.clear();
+    for (std::size_t k = 0; k < flat.size(); k += 7)
+      history.push_back({flat[k], flat[k + 1], flat[k + 2], flat[k + 3], flat[k + 4], flat[k + 5], flat[k + 6]});
+  }
 };
 
 struct Result {
@@ -117,6 +156,7 @@ struct Result {
   double energy_at_failure = 0;   // J per m of width in 2D, J in 3D
   double energy_rise_after_failure = 0;
   double wall_seconds = 0;
+  int stop_code = 0;  // 128 + signal when stopped by Ctrl-C / SIGTERM (the result is then partial)
   std::vector<HistoryRow> history;
   double error() const { return flexural_strain / input.flexural_strain() - 1; }
 };
@@ -276,7 +316,7 @@ Result run(const IceBeamCase& c, const Options& o) {
   const double scale = Dim == 2 ? c.width : c.width / depth;  // to the specimen's force in N
 
   std::unique_ptr<PvdWriter> pvd;
-  std::size_t frame = 0;
+  LoopState st;
   if (!o.out.empty()) {
     std::filesystem::create_directories(o.out);
     pvd = std::make_unique<PvdWriter>(o.out + "/case" + c.name + ".pvd");
@@ -290,23 +330,42 @@ Result run(const IceBeamCase& c, const Options& o) {
     progress = std::make_unique<ProgressReporter>(progress_horizon);
     progress->set_label("case " + c.name);
   }
+  const auto snapshot_name = [&](long long frame) { return numbered_file_name("case" + c.name, static_cast<std::size_t>(frame)); };
   auto snapshot = [&] {
     if (!pvd) return;
-    const std::string file = numbered_file_name("case" + c.name, frame++);
+    const std::string file = snapshot_name(st.frames++);
     write_vtu(o.out + "/" + file, s.output());
     pvd->add(s.time(), file);
+    st.frame_times.push_back(s.time());
   };
-  snapshot();
   // The indenter's lowest particle (angle pi/2) is its reference point for the travel.
   std::size_t lowest = indenter[0];
   for (const auto i : indenter)
     if (s.particles().positions()[i][1] < s.particles().positions()[lowest][1]) lowest = i;
   const double y_indenter0 = s.particles().positions()[lowest][1];
-  double after_peak_low = -1, next_snapshot = 0;
-  double indenter_work = 0, work_at_failure = 0, largest_balance = 0;
+  if (o.restart.empty()) {
+    snapshot();
+  } else {
+    read_checkpoint(o.restart, s, st);
+    for (long long k = 0; pvd && k < st.frames; ++k) pvd->add(st.frame_times[static_cast<std::size_t>(k)], snapshot_name(k));
+    std::printf("case %s: continuing from %s at step %lld, t = %g s\n", c.name.c_str(), o.restart.c_str(), s.step_count(),
+                s.time());
+  }
+  std::optional<mpsfsi_examples::RunCheckpoints> checkpoints;
+  if (o.checkpoints) checkpoints.emplace(o.out, o.checkpoint_every, "checkpoint_case" + c.name);
   const long long history_every = std::max(1LL, static_cast<long long>(expected / 2000 / s.dt()));
   for (;;) {
     const double t = s.time();
+    if (checkpoints && (checkpoints->due(t) || checkpoints->stop_requested())) {
+      const std::string path = checkpoints->write(s, s.step_count(), t, st);
+      std::fprintf(stderr, "checkpoint: %s (t = %g s)\n", path.c_str(), t);
+      if (checkpoints->stop_requested()) {
+        std::fprintf(stderr, "three_point_bending: stopped by a signal; continue with --case %s --restart %s\n",
+                     c.name.c_str(), path.c_str());
+        r.stop_code = checkpoints->stop_exit_code();
+        return r;
+      }
+    }
     const double v = t < ramp ? o.speed * 0.5 * (1 - std::cos(M_PI * t / ramp)) : o.speed;
     vec vel = vec::Zero();
     vel[1] = -v;
@@ -315,15 +374,15 @@ Result run(const IceBeamCase& c, const Options& o) {
     // Load: the beam pushes the indenter up through contact.
     double load = 0;
     for (const auto i : indenter) load += s.internal_force(i)[1];
-    indenter_work += load * v * s.last_dt();  // the indenter moves down at v against the beam's push
+    st.indenter_work += load * v * s.last_dt();  // the indenter moves down at v against the beam's push
     load *= scale;
-    if (s.first_failure_time() >= 0 && (r.energy_at_failure == 0 || s.step_count() % 10 == 0)) {
-      const double balance = s.total_energy() - (indenter_work - work_at_failure);
-      if (r.energy_at_failure == 0) {
-        r.energy_at_failure = largest_balance = s.total_energy();
-        work_at_failure = indenter_work;
+    if (s.first_failure_time() >= 0 && (st.energy_at_failure == 0 || s.step_count() % 10 == 0)) {
+      const double balance = s.total_energy() - (st.indenter_work - st.work_at_failure);
+      if (st.energy_at_failure == 0) {
+        st.energy_at_failure = st.largest_balance = s.total_energy();
+        st.work_at_failure = st.indenter_work;
       }
-      largest_balance = std::max(largest_balance, balance);
+      st.largest_balance = std::max(st.largest_balance, balance);
     }
     const double deflection = sag(axis_mid) - 0.5 * (sag(axis_left) + sag(axis_right));
     const double bottom_deflection = sag(bottom_mid) - 0.5 * (sag(bottom_left) + sag(bottom_right));
@@ -332,44 +391,51 @@ Result run(const IceBeamCase& c, const Options& o) {
     // about 0.2 ms; load read during that run and after it is the dynamics of the pieces
     // (recorded in the history, not taken as the strength).
     const bool before_fracture = s.first_failure_time() < 0;
-    if (before_fracture && load > r.peak_load) {
-      r.peak_load = load;
-      r.deflection_at_peak = deflection;
-      r.bottom_deflection_at_peak = bottom_deflection;
-      r.indenter_at_peak = travel;
-      r.time_at_peak = s.time();
+    if (before_fracture && load > st.peak_load) {
+      st.peak_load = load;
+      st.deflection_at_peak = deflection;
+      st.bottom_deflection_at_peak = bottom_deflection;
+      st.indenter_at_peak = travel;
+      st.time_at_peak = s.time();
     }
     // History: evenly in time, and every 10th step once cracks run (to resolve the load drop).
     if (s.step_count() % history_every == 0 || (s.cut_bonds() > 0 && s.step_count() % 10 == 0)) {
       const auto& sigma = s.stresses();
-      r.history.push_back({s.time(), travel, deflection, bottom_deflection, load, sigma[top](0, 0), sigma[bottom](0, 0)});
+      st.history.push_back({s.time(), travel, deflection, bottom_deflection, load, sigma[top](0, 0), sigma[bottom](0, 0)});
     }
     // Snapshots: 20 over the loading, then every 0.05 ms for the first millisecond of fracture.
     const bool fracturing = s.first_failure_time() >= 0 && s.time() < s.first_failure_time() + 1e-3;
-    if (pvd && s.time() >= next_snapshot) {
+    if (pvd && s.time() >= st.next_snapshot) {
       snapshot();
-      next_snapshot = s.time() + (fracturing ? 5e-5 : expected / 20);
-    } else if (fracturing && next_snapshot > s.time() + 5e-5) {
-      next_snapshot = s.time();  // the first crack: switch to the fine cadence at once
+      st.next_snapshot = s.time() + (fracturing ? 5e-5 : expected / 20);
+    } else if (fracturing && st.next_snapshot > s.time() + 5e-5) {
+      st.next_snapshot = s.time();  // the first crack: switch to the fine cadence at once
     }
     if (progress) progress->update(s.step_count(), std::min(s.time(), progress_horizon));
     // Stop when the beam is in two pieces and the load has stayed below 2 % of the peak for
     // 0.5 ms, or 5 ms after the first crack, or at three times the expected failure time.
-    if (s.first_failure_time() >= 0 && load < 0.02 * r.peak_load) {
-      if (after_peak_low < 0) after_peak_low = s.time();
-      if (s.time() - after_peak_low > 5e-4 && s.step_count() % 50 == 0) {
+    if (s.first_failure_time() >= 0 && load < 0.02 * st.peak_load) {
+      if (st.after_peak_low < 0) st.after_peak_low = s.time();
+      if (s.time() - st.after_peak_low > 5e-4 && s.step_count() % 50 == 0) {
         if (detail::large_pieces(find_fragments(s.bonds()), beam_count) >= 2) break;
       }
     } else {
-      after_peak_low = -1;
+      st.after_peak_low = -1;
     }
     if (s.time() > t_max || (s.first_failure_time() >= 0 && s.time() > s.first_failure_time() + 5e-3)) break;
   }
   if (progress) progress->finish();
   snapshot();
+  r.peak_load = st.peak_load;
+  r.deflection_at_peak = st.deflection_at_peak;
+  r.bottom_deflection_at_peak = st.bottom_deflection_at_peak;
+  r.indenter_at_peak = st.indenter_at_peak;
+  r.time_at_peak = st.time_at_peak;
+  r.energy_at_failure = st.energy_at_failure;
+  r.history = st.history;
   r.end_time = s.time();
   r.first_failure = s.first_failure_time();
-  if (r.energy_at_failure > 0) r.energy_rise_after_failure = largest_balance / r.energy_at_failure - 1;
+  if (r.energy_at_failure > 0) r.energy_rise_after_failure = st.largest_balance / r.energy_at_failure - 1;
   r.flexural_strain = 6 * c.height * r.deflection_at_peak / (span * span);
   double last_load = 0;
   for (const auto i : indenter) last_load += s.internal_force(i)[1];

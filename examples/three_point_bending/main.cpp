@@ -50,7 +50,15 @@ int main(int argc, char** argv) try {
       ->check(mpsfsi_examples::non_negative());
   cli.add("--out", o.run.out, "output folder");
   cli.flag("--no-output", o.no_output, "write no files");
+  cli.add("--checkpoint-every", o.run.checkpoint_every,
+          "simulated time between checkpoints (out/checkpoint_case<case>_<step>.bin); 0: only on Ctrl-C / SIGTERM", "s")
+      ->check(mpsfsi_examples::non_negative());
+  cli.add("--restart", o.run.restart, "checkpoint to continue from, with --case naming its case (same options otherwise)");
   if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
+  if (!o.run.restart.empty() && o.which == "all") {
+    std::fprintf(stderr, "three_point_bending: --restart needs --case (the case the checkpoint belongs to)\n");
+    return 2;
+  }
   if (cli.print_case_if_requested()) return 0;
   o.run.modulus = o.modulus == "apparent" ? bending::Modulus::apparent : bending::Modulus::material;
   o.run.plane_model = o.plane == "strain" ? mpsfsi::PlaneModel::plane_strain : mpsfsi::PlaneModel::plane_stress;
@@ -59,6 +67,7 @@ int main(int argc, char** argv) try {
   const std::string out = o.no_output ? std::string() : o.run.out;
   o.run.out = out;
   o.run.progress = true;
+  o.run.checkpoints = !out.empty();
 
   std::printf("Three-point bending of ice beams (Table 1), %dD %s, l0 = %g m, indenter %g m/s, span 0.18 m, %s modulus\n",
               o.dim, o.dim == 3 ? "" : (o.run.plane_model == mpsfsi::PlaneModel::plane_stress ? "plane stress" : "plane strain"),
@@ -81,6 +90,7 @@ int main(int argc, char** argv) try {
   for (const auto& c : bending::table1()) {
     if (o.which != "all" && o.which != c.name) continue;
     const auto r = o.dim == 2 ? bending::run<2>(c, o.run) : bending::run<3>(c, o.run);
+    if (r.stop_code) return r.stop_code;
     total += r.wall_seconds;
     worst = std::max(worst, std::abs(r.error()));
     char surface[16] = "-";
