@@ -2,16 +2,20 @@
 // Dam break through an elastic gate (Antoci, Gallati & Sibilla 2007): water 0.1 m wide
 // and 0.14 m high held by a rubber gate 0.079 m x 0.005 m clamped at its top (rho_s = 1100 kg/m3,
 // E = 10 MPa, nu = 0.4), released at t = 0. Writes VTU/PVD of the fluid and the gate, a CSV of
-// the gate tip's displacement, and prints it; plot.py renders the tip history to PNG.
-// `elastic_gate --help` lists the options.
+// the gate tip's displacement (with the time step and the fastest fluid particle's speed, which
+// sets it), and prints it; plot.py renders the tip history to PNG. Writes checkpoints on request
+// and continues from one. `elastic_gate --help` lists the options.
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <mpsfsi/fluid/fluid_solver.hpp>
 #include <mpsfsi/fsi/fsi_coupler.hpp>
+#include <mpsfsi/io/checkpoint.hpp>
 #include <mpsfsi/io/csv_writer.hpp>
 #include <mpsfsi/io/progress.hpp>
 #include <mpsfsi/io/pvd_writer.hpp>
@@ -20,6 +24,7 @@
 #include <mpsfsi/solid/elastic_solver.hpp>
 
 #include "common/case_options.hpp"
+#include "common/run_checkpoints.hpp"
 
 using namespace mpsfsi;
 
@@ -34,6 +39,25 @@ struct Options {
   double tolerance = 1e-2;  // sub-iterated coupling: relative change of the interface load
   std::string plane = "strain";
   std::string out = "out/elastic_gate";
+  double checkpoint_every = 0;  // s between checkpoints; 0: only on Ctrl-C / SIGTERM
+  std::string restart;          // checkpoint to continue from
+};
+
+// What the output loop has done so far, saved with the coupler in each checkpoint so that a
+// restarted run writes the same files as one run straight through.
+struct OutputState {
+  long long frames = 0;             // snapshots written
+  double next_output = 0;           // simulated time of the next one
+  std::vector<double> frame_times;  // simulated time of each snapshot (the PVD index)
+  std::uint64_t csv_rows = 0;       // rows of gate_tip.csv
+
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    a.value(frames);
+    a.value(next_output);
+    a.array(frame_times);
+    a.value(csv_rows);
+  }
 };
 
 template <int Dim, class Scheme>
@@ -57,32 +81,59 @@ int run(const Options& o) {
   Coupler coupler(scene.fluid_particles<Dim>(o.l0), fp, std::move(gate), CouplingParameters{}, scheme);
 
   std::filesystem::create_directories(o.out);
+  OutputState state;
+  if (!o.restart.empty()) {
+    read_checkpoint(o.restart, coupler, state);
+    std::printf("continuing from %s: step %lld, t = %g s\n", o.restart.c_str(), coupler.step_count(), coupler.time());
+  }
   PvdWriter fluid_pvd(o.out + "/fluid.pvd"), gate_pvd(o.out + "/gate.pvd");
-  CsvWriter csv(o.out + "/gate_tip.csv", {"t", "dx", "dy", "interface_force_x", "interface_force_y", "iterations"});
-  const Vec<Dim> tip0 = coupler.solid().particles().positions()[tip];
+  for (long long k = 0; k < state.frames; ++k) {
+    const auto frame = static_cast<std::size_t>(k);
+    fluid_pvd.add(state.frame_times[frame], numbered_file_name("fluid", frame));
+    gate_pvd.add(state.frame_times[frame], numbered_file_name("gate", frame));
+  }
+  // dt: the step that led to the row's time; fastest_fluid_speed: the Courant limit's speed.
+  const std::vector<std::string> columns = {"t",  "dx", "dy", "interface_force_x", "interface_force_y", "iterations",
+                                            "dt", "fastest_fluid_speed"};
+  CsvWriter csv = o.restart.empty() ? CsvWriter(o.out + "/gate_tip.csv", columns)
+                                    : CsvWriter::continue_after(o.out + "/gate_tip.csv", columns, state.csv_rows);
+  mpsfsi_examples::RunCheckpoints checkpoints(o.out, o.checkpoint_every);
+  // The tip's position at t = 0, also after a restart.
+  const Vec<Dim> tip0 = coupler.solid().reference_positions()[tip];
   std::printf("elastic gate %dD (%s coupling, plane %s): %zu fluid-set particles, %zu gate particles, l0 = %g m, gate "
               "length %.4f m, to t = %g s\n",
               Dim, Scheme::name, o.plane.c_str(), coupler.structure_offset(), coupler.solid().particles().size(), o.l0,
               scene.gate_length_used(o.l0), o.end);
   std::fprintf(stderr, "%s\n", ProgressReporter::legend());
-  std::printf("%8s %10s %10s %6s\n", "t (s)", "tip dx (m)", "tip dy (m)", "iter");
+  std::printf("%8s %10s %10s %6s %10s\n", "t (s)", "tip dx (m)", "tip dy (m)", "iter", "max |u| (m/s)");
   ProgressReporter progress(o.end);
-  std::size_t frame = 0;
-  double next_output = 0;
   for (;;) {
     const double t = coupler.time();
+    // Checkpoints at the top of the loop: a restarted run writes this time's outputs again.
+    if (checkpoints.due(t) || checkpoints.stop_requested()) {
+      state.csv_rows = csv.rows();
+      const std::string path = checkpoints.write(coupler, coupler.step_count(), t, state);
+      std::fprintf(stderr, "checkpoint: %s (t = %g s)\n", path.c_str(), t);
+      if (checkpoints.stop_requested()) {
+        std::fprintf(stderr, "elastic_gate: stopped by a signal; continue with --restart %s\n", path.c_str());
+        return checkpoints.stop_exit_code();
+      }
+    }
     const Vec<Dim> d = coupler.solid().particles().positions()[tip] - tip0;
     const Vec<Dim> f = coupler.total_interface_force();
-    csv.row({t, d[0], d[1], f[0], f[1], static_cast<double>(coupler.last_iterations())});
-    if (t >= next_output - 1e-12) {
+    const double fastest = coupler.fluid().fastest_fluid_speed();
+    csv.row({t, d[0], d[1], f[0], f[1], static_cast<double>(coupler.last_iterations()), coupler.fluid().last_dt(),
+             fastest});
+    if (t >= state.next_output - 1e-12) {
+      const auto frame = static_cast<std::size_t>(state.frames++);
       const std::string ff = numbered_file_name("fluid", frame), gf = numbered_file_name("gate", frame);
       write_vtu(o.out + "/" + ff, coupler.fluid().particles());
       write_vtu(o.out + "/" + gf, coupler.solid().output());
       fluid_pvd.add(t, ff);
       gate_pvd.add(t, gf);
-      ++frame;
-      std::printf("%8.4f %10.5f %10.5f %6d\n", t, d[0], d[1], coupler.last_iterations());
-      next_output += o.every;
+      state.frame_times.push_back(t);
+      std::printf("%8.4f %10.5f %10.5f %6d %10.3f\n", t, d[0], d[1], coupler.last_iterations(), fastest);
+      state.next_output += o.every;
     }
     if (t >= o.end - 1e-12) break;
     coupler.step();
@@ -114,6 +165,10 @@ int main(int argc, char** argv) try {
   cli.add("--scheme", o.scheme, "coupling scheme: sub-iterated (Aitken) or explicit")->check(one_of({"iterated", "explicit"}));
   cli.add("--tolerance", o.tolerance, "sub-iterations' convergence: relative change of the interface load")->check(positive());
   cli.add("--plane", o.plane, "2D plane model of the gate")->check(one_of({"strain", "stress"}));
+  cli.add("--checkpoint-every", o.checkpoint_every,
+          "simulated time between checkpoints (out/checkpoint_<step>.bin); 0: only on Ctrl-C / SIGTERM", "s")
+      ->check(mpsfsi_examples::non_negative());
+  cli.add("--restart", o.restart, "checkpoint to continue from (written by a run with the same options)");
   cli.add("--out", o.out, "output folder");
   if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
   if (o.l0 == 0) o.l0 = o.dim == 2 ? 0.001 : 0.0025;

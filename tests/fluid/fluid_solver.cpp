@@ -38,6 +38,19 @@ TEST_CASE("fluid.fluid_solver: bad input gets a clear error") {
     set.add(set.positions()[3]);
     CHECK_THROWS_WITH_AS(FluidSolver<2>(std::move(set), p), doctest::Contains("overlap"), InvalidInput);
   }
+  SUBCASE("fluid spaced differently from l0") {
+    // The tank is built 5 mm apart: with l0 = 2.5 mm the lattice constant n0 would expect a fluid
+    // four times as dense, and with l0 = 10 mm one four times thinner.
+    p.l0 = 0.0025;
+    CHECK_THROWS_WITH_AS(FluidSolver<2>(small_tank(), p),
+                         doctest::Contains("the particles are 0.005 m apart (median distance to the nearest neighbour) "
+                                           "but l0 = 0.0025 m"),
+                         InvalidInput);
+    p.l0 = 0.01;
+    CHECK_THROWS_WITH_AS(FluidSolver<2>(small_tank(), p), doctest::Contains("0.005 m apart"), InvalidInput);
+    p.l0 = 0.0052;  // 4 % off: inside the 10 % band
+    CHECK_NOTHROW(FluidSolver<2>(small_tank(), p));
+  }
   SUBCASE("NaN position") {
     auto set = small_tank();
     set.positions()[5][1] = std::nan("");
@@ -239,7 +252,7 @@ TEST_CASE("fluid.fluid_solver: wall particles move with the velocity they are gi
 }
 
 // A lone free-surface particle driven into a wall particle: the situation that throws particles off
-// the end wall of the elastic-gate case at 8-12 m/s when collisions act only below 0.5 l0
+// the end wall of the elastic-gate case at up to 17 m/s when collisions act only below 0.5 l0
 // (docs/validation/fluid.md, collision distance). The pair's weight is large at 0.6 l0, the wall
 // particle (its other neighbours all at the free surface) takes the whole divergence impulse of
 // eq 11 as pressure, and the gradient hands it back to the particle in one step. Whatever the wall

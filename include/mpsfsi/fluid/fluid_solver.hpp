@@ -12,6 +12,7 @@
 
 #include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/detail/format.hpp"
+#include "mpsfsi/core/detail/spacing.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/filter_neighbors.hpp"
 #include "mpsfsi/core/neighbor_search.hpp"
@@ -76,7 +77,8 @@ class FluidSolver {
   static constexpr int dimension = Dim;
 
   // Takes the particles (fluid, wall and dummy) and the parameters; throws InvalidInput on an
-  // empty set, a set without fluid, non-finite values, overlapping particles or bad parameters.
+  // empty set, a set without fluid, non-finite values, overlapping particles, fluid
+  // spaced otherwise than l0 or bad parameters.
   FluidSolver(ParticleSet<Dim> particles, parameters_type params)
       : p_(std::move(params)), set_(std::move(particles)), search_(radius_of(p_)) {
     p_.validate();
@@ -98,7 +100,7 @@ class FluidSolver {
     }
     reference_speed_ = std::sqrt(2 * p_.gravity.norm() * std::max(hi - lo, p_.l0));
     update_neighbors();
-    check_overlaps();
+    check_spacing();
   }
 
   // Advances one time step. Throws SimulationError (step, time, particle) if the step would
@@ -213,14 +215,20 @@ class FluidSolver {
 
   // The largest stable step for the current velocities: Courant and viscous limits.
   double stable_dt() const {
-    double umax = 0;
-    for (std::size_t i = 0; i < set_.size(); ++i)
-      if (set_.kinds()[i] == ParticleKind::fluid) umax = std::max(umax, set_.velocities()[i].norm());
+    double umax = fastest_fluid_speed();
     // Before anything moves, the speed gravity gives over one spacing bounds the Courant limit.
     umax = std::max(umax, std::sqrt(p_.gravity.norm() * p_.l0));
     double dt = umax > 0 ? p_.courant * p_.l0 / umax : std::numeric_limits<double>::max();
     if (p_.kinematic_viscosity > 0) dt = std::min(dt, p_.viscous_number * p_.l0 * p_.l0 / p_.kinematic_viscosity);
     return dt;
+  }
+
+  // The largest speed of a fluid particle (the Courant limit's speed).
+  double fastest_fluid_speed() const {
+    double umax = 0;
+    for (std::size_t i = 0; i < set_.size(); ++i)
+      if (set_.kinds()[i] == ParticleKind::fluid) umax = std::max(umax, set_.velocities()[i].norm());
+    return umax;
   }
 
   double time() const { return time_; }
@@ -326,13 +334,26 @@ class FluidSolver {
                                                      std::to_string(set_.ids()[i]) + ") is not finite");
   }
 
-  void check_overlaps() const {
+  // Overlapping particles (closer than 1e-3 l0) and fluid spaced otherwise than l0 are errors.
+  // The spacing (detail::check_median_spacing) is taken between fluid particles only: walls may
+  // be laid out otherwise, and a fluid particle may be set close to a wall on purpose.
+  void check_spacing() const {
     const double min_distance = 1e-3 * p_.l0;
-    for (std::size_t i = 0; i < set_.size(); ++i)
-      for (Offset k = list_all_.begin(i); k < list_all_.end(i); ++k)
-        if (list_all_.distances[static_cast<std::size_t>(k)] < min_distance)
-          detail::throw_invalid("FluidSolver", "particles " + std::to_string(i) + " and " +
-                                                   std::to_string(list_all_.indices[k]) + " overlap (closer than 1e-3 l0)");
+    const auto& kind = set_.kinds();
+    std::vector<double> nearest;
+    for (std::size_t i = 0; i < set_.size(); ++i) {
+      double d = std::numeric_limits<double>::max();
+      for (Offset k = list_all_.begin(i); k < list_all_.end(i); ++k) {
+        const double dk = list_all_.distances[static_cast<std::size_t>(k)];
+        const Index j = list_all_.indices[static_cast<std::size_t>(k)];
+        if (dk < min_distance)
+          detail::throw_invalid("FluidSolver", "particles " + std::to_string(i) + " and " + std::to_string(j) +
+                                                   " overlap (closer than 1e-3 l0)");
+        if (kind[static_cast<std::size_t>(j)] == ParticleKind::fluid) d = std::min(d, dk);
+      }
+      if (kind[i] == ParticleKind::fluid && d < std::numeric_limits<double>::max()) nearest.push_back(d);
+    }
+    detail::check_median_spacing(nearest, p_.l0, "FluidSolver");
   }
 
   double choose_dt() {

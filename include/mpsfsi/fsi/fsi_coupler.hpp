@@ -156,6 +156,8 @@ class FsiCoupler {
     a.array(structure_acceleration_);
     a.value(step_count_);
     a.value(last_omega_);
+    a.value(substeps_);  // the last step's report (last_substeps, last_iterations), which outputs show
+    a.value(iterations_);
     quasi_newton_.checkpoint_state(a);
   }
   void checkpoint_restored() {

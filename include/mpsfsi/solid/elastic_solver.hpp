@@ -14,6 +14,7 @@
 
 #include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/detail/format.hpp"
+#include "mpsfsi/core/detail/spacing.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/particle_set.hpp"
@@ -588,10 +589,8 @@ class ElasticSolver {
     body_velocity_.assign(number.size(), vec_type::Zero());
   }
 
-  // Overlapping particles (closer than l0/2) and a spacing that disagrees with l0 are errors: the
-  // mass rho l0^d and the lattice constants (docs/theory.md, section 3) assume particles l0 apart.
-  // The spacing is the median distance to the nearest neighbour, exactly l0 on a lattice; 10 %
-  // off already puts the mass 21 % (2D) or 33 % (3D) off.
+  // Overlapping particles (closer than l0/2) and a spacing that disagrees with l0
+  // (detail::check_median_spacing) are errors.
   void check_spacing() const {
     const std::size_t n = set_.size();
     if (n < 2) return;
@@ -615,17 +614,11 @@ class ElasticSolver {
                                                    " overlap (closer than l0/2)");
       nearest.push_back(d);
     }
-    const std::string l0_text = "l0 = " + detail::format_number(p_.l0) + " m";
     if (nearest.empty())
-      detail::throw_invalid("ElasticSolver", "no two particles are within 1.5 l0 of each other (" + l0_text +
-                                                 "): the particles are spaced more widely than l0");
-    const auto middle = nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2);
-    std::nth_element(nearest.begin(), middle, nearest.end());
-    const double spacing = *middle;
-    if (std::abs(spacing / p_.l0 - 1) > 0.1)
-      detail::throw_invalid("ElasticSolver", "the particles are " + detail::format_number(spacing) +
-                                                 " m apart (median distance to the nearest neighbour) but " +
-                                                 l0_text + ": build them l0 apart or set l0 to their spacing");
+      detail::throw_invalid("ElasticSolver", "no two particles are within 1.5 l0 of each other (l0 = " +
+                                                 detail::format_number(p_.l0) +
+                                                 " m): the particles are spaced more widely than l0");
+    detail::check_median_spacing(nearest, p_.l0, "ElasticSolver");
   }
 
   parameters_type p_;
