@@ -39,8 +39,10 @@ struct NoCollision {
 // pressure from eq 11's divergence term alone, and the gradient throws it back faster than it
 // came (1.15 times its speed in the unit test; jets of up to 17 m/s off the end wall of the
 // elastic-gate case at l0 = 2.5 mm). At 0.9 the same impact leaves it at 0.49 times, the gate
-// case has no particle above 2.3 m/s (Ritter's front speed 2.34 m/s), and the fluid verification stays within its tolerances (hydrostatic
-// 2D 0.58 % against 0.46 % at 0.5, dam-break front 3.2 % against 3.4 %; docs/validation/fluid.md).
+// case's fastest particle stays near Ritter's dam-break front speed 2.34 m/s (2.26 m/s at
+// l0 = 2.5 mm, 2.84 m/s at 1 mm), and the fluid verification stays within its tolerances
+// (hydrostatic 2D 0.58 % against 0.46 % at 0.5, dam-break front 3.2 % against 3.4 %;
+// docs/validation/fluid.md).
 struct KoshizukaCollision {
   double distance_ratio = 0.9;  // at most FluidSolver's re_density_ratio (the pairs it passes)
   double restitution = 0.2;
