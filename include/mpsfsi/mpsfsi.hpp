@@ -41,6 +41,7 @@
 #include "mpsfsi/fracture/failure_criteria.hpp"
 #include "mpsfsi/fracture/failure_stress.hpp"
 #include "mpsfsi/fracture/fragments.hpp"
+#include "mpsfsi/fracture/strength.hpp"
 #include "mpsfsi/fsi/coupling_parameters.hpp"
 #include "mpsfsi/fsi/coupling_schemes.hpp"
 #include "mpsfsi/fsi/fsi_coupler.hpp"

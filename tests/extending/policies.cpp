@@ -70,6 +70,32 @@ struct ColumnarIce : mpsfsi::SolidDefaults<Dim> {
 };
 // [end snippet]
 
+// [snippet: failure-model]
+// A maximum principal strain criterion with its parameters: the strain from the stress by
+// Hooke's law (plane stress or 3D), its largest principal value against a critical strain, which
+// the model gives every particle as its strength.
+struct MaxPrincipalStrain {
+  static constexpr bool enabled = true;
+  double youngs_modulus = 0, poisson_ratio = 0, critical_strain = 0;
+
+  template <int Dim, class Scalar>
+  Scalar principal(const mpsfsi::Mat<Dim, Scalar>& sigma, mpsfsi::Vec<Dim, Scalar>& direction) const {
+    const Scalar nu = poisson_ratio;
+    const mpsfsi::Mat<Dim, Scalar> strain =
+        ((1 + nu) * sigma - nu * sigma.trace() * mpsfsi::Mat<Dim, Scalar>::Identity()) / youngs_modulus;
+    return mpsfsi::MaxPrincipalStress::principal<Dim, Scalar>(strain, direction);
+  }
+  void assign_strengths(const mpsfsi::StrengthSetup& setup, std::vector<double>& strength) const {
+    strength.assign(setup.ids->size(), critical_strain);
+  }
+};
+
+template <int Dim>
+struct StrainLimitedIce : mpsfsi::SolidDefaults<Dim> {
+  using failure = MaxPrincipalStrain;
+};
+// [end snippet]
+
 // A small dam break for the fluid policies: a column 0.1 m square in a tank 0.2 m long,
 // l0 = 1 cm, fixed step 0.5 ms.
 constexpr double kSpacing = 0.01;
@@ -169,6 +195,35 @@ TEST_CASE("extending: a user's failure criterion decides where and along which p
   s.step();
   REQUIRE(!s.failure_log().empty());
   for (const auto& e : s.failure_log()) CHECK(e.normal[0] == 1.0);
+}
+
+TEST_CASE("extending: a user's failure model with parameters reads strain against its own strength") {
+  using namespace mpsfsi;
+  // A plane-stress bar stretched 2e-3 along y: the criterion reads that strain (to 1 %: the
+  // stress model's Green strain differs from the small strain by strain / 2 = 0.1 %) and the bar
+  // breaks when the critical strain is 1.5e-3, not when it is 2.5e-3.
+  const double l0 = 0.01, strain = 2e-3;
+  const auto bar = scenes::material_block<2>(Vec<2>::Zero(), Vec<2>(0.03, 0.12), l0);
+  auto params = test::case02_ice<2>(l0);
+  params.plane_model = PlaneModel::plane_stress;
+  params.tensile_strength = 1e9;  // not read by this model
+  Mat<2> f = Mat<2>::Identity() * (1 - params.poisson_ratio * strain);
+  f(1, 1) = 1 + strain;
+  const auto run = [&](double critical) {
+    ElasticSolver<2, StrainLimitedIce<2>> solver(
+        bar, params, {}, MaxPrincipalStrain{params.youngs_modulus, params.poisson_ratio, critical});
+    for (std::size_t i = 0; i < bar.size(); ++i) {
+      solver.particles().positions()[i] = f * bar.positions()[i];
+      if (bar.positions()[i][1] < 0.02 || bar.positions()[i][1] > 0.1) solver.clamp(i);
+    }
+    CHECK(solver.strengths().front() == critical);
+    solver.step();
+    const std::size_t middle = scenes::select(bar, [](const Vec<2>& x) { return (x - Vec<2>(0.015, 0.065)).norm() < 0.006; })[0];
+    CHECK(solver.criterion_stresses()[middle] == doctest::Approx(strain).epsilon(0.01));
+    return solver.failure_log().size();
+  };
+  CHECK(run(1.5e-3) > 0);
+  CHECK(run(2.5e-3) == 0);
 }
 
 }  // TEST_SUITE

@@ -10,13 +10,20 @@
 
 namespace mpsfsi {
 
-// A failure-criterion policy of ElasticSolver provides
+// A failure model (the `failure` policy of ElasticSolver) is an object the solver holds, built
+// from the parameters the user passes to the solver's constructor. It provides
 //   static constexpr bool enabled;
 //   template <int Dim, class Scalar>
-//   static Scalar principal(const Mat<Dim, Scalar>& sigma, Vec<Dim, Scalar>& direction);
-// returning the largest normal stress sigma_1 over all directions and, in `direction`, the unit
-// normal along which it acts (the crack-plane normal n_c). A particle fails when
-// sigma_1 >= sigma_f (eq 27, the maximum normal stress criterion).
+//   Scalar principal(const Mat<Dim, Scalar>& sigma, Vec<Dim, Scalar>& direction) const;  // or static
+// returning the stress the criterion compares with the particle's strength (for the maximum
+// normal stress criterion, sigma_1, the largest normal stress over all directions) and, in
+// `direction`, the unit normal of the plane it would crack on (n_c). A particle fails when the
+// value reaches its strength (eq 27). `principal` runs inside a parallel loop over particles: it
+// must not modify shared state. Optionally (strength.hpp)
+//   void assign_strengths(const StrengthSetup&, std::vector<double>& strength) const;
+// sets each particle's strength once, when the solver is built; without it every particle has
+// SolidParameters::tensile_strength. The criteria below carry no parameters and cost what a
+// static function does.
 
 // Null object: nothing ever fails (the solver skips the check entirely).
 struct NoFailure {

@@ -22,6 +22,7 @@
 #include "mpsfsi/fracture/failure_criteria.hpp"
 #include "mpsfsi/fracture/failure_stress.hpp"
 #include "mpsfsi/fracture/fragments.hpp"
+#include "mpsfsi/fracture/strength.hpp"
 #include "mpsfsi/kernels/lattice_constants.hpp"
 #include "mpsfsi/kernels/weight.hpp"
 #include "mpsfsi/solid/bonds.hpp"
@@ -104,12 +105,14 @@ class ElasticSolver {
   static constexpr int dimension = Dim;
 
   // Takes the particles (all become ParticleKind::solid; their positions are the reference
-  // configuration, their velocities the initial ones), the parameters and optionally a body id
-  // per particle (default: one body). Throws InvalidInput on an empty set, non-finite values,
-  // overlapping particles (closer than l0/2), a spacing that disagrees with l0 (see check_spacing)
-  // or missing/invalid parameters.
-  ElasticSolver(ParticleSet<Dim> particles, parameters_type params, std::vector<std::int32_t> body = {})
-      : p_(std::move(params)), set_(std::move(particles)) {
+  // configuration, their velocities the initial ones), the parameters, optionally a body id per
+  // particle (default: one body) and the failure model object (default: built from no
+  // parameters; WeibullStrength and CrackBandStrength take theirs here). Throws InvalidInput on an
+  // empty set, non-finite values, overlapping particles (closer than l0/2), a spacing that
+  // disagrees with l0 (see check_spacing) or missing/invalid parameters.
+  ElasticSolver(ParticleSet<Dim> particles, parameters_type params, std::vector<std::int32_t> body = {},
+                failure_type failure = failure_type{})
+      : p_(std::move(params)), set_(std::move(particles)), failure_(std::move(failure)) {
     p_.validate();
     if (set_.empty()) detail::throw_invalid("ElasticSolver", "the particle set is empty");
     set_.validate();
@@ -149,6 +152,7 @@ class ElasticSolver {
     context_.n0 = lattice.n0;
     context_.lap_lambda = lattice.lambda;
     mass_ = p_.density * context_.volume;
+    if constexpr (failure_type::enabled) assign_strengths();
     model_.initialize(bonds_, context_);
     contact_.initialize(n, p_.contact_distance(), p_.contact_stiffness(),
                         2 * p_.contact_damping_ratio * std::sqrt(p_.contact_stiffness() * 0.5 * mass_));
@@ -312,7 +316,10 @@ class ElasticSolver {
   // The particle set with its output fields (displacement, stress, damage, max_principal_stress,
   // fragment, body, constraint) brought up to date, ready for write_vtu. `fragment` labels the
   // connected pieces of the intact-bond graph (find_fragments): after fracture, colour by it to
-  // see the pieces.
+  // see the pieces. With a failure model there are two more: `strength`, each particle's, and
+  // `failure_stress`, the value the criterion compared with it at the last step's check (read
+  // from the failure read-out's stress, not from `stress`; 0 where it was not checked: prescribed
+  // particles and particles with no intact bond).
   const ParticleSet<Dim>& output() {
     stresses();
     auto& u = set_.field(displacement_);
@@ -368,6 +375,12 @@ class ElasticSolver {
   double first_failure_time() const { return first_failure_time_; }
   // Every failure in order: the crack path (reference_positions()[event.particle]) and history.
   const std::vector<FailureEvent<Dim>>& failure_log() const { return failure_log_; }
+  // The failure model object; each particle's strength and the value the criterion compared
+  // with it at the last step's check (the output fields `strength` and `failure_stress`; Pa;
+  // empty without a failure model).
+  const failure_type& failure_model() const { return failure_; }
+  const std::vector<double>& strengths() const { return failure_field(strength_); }
+  const std::vector<double>& criterion_stresses() const { return failure_field(failure_stress_); }
 
   // Directed bonds evaluated per force evaluation (the benchmark's unit of work).
   std::size_t bond_evaluations_per_step() const { return bonds_.num_bonds(); }
@@ -500,17 +513,20 @@ class ElasticSolver {
     const auto& sigma = failure_stresses();
     const std::size_t n = set_.size();
     failing_.clear();
-    const double strength = p_.tensile_strength;
+    const auto& strength = set_.field(strength_);
+    auto& read = set_.field(failure_stress_);
     MPSFSI_OMP(parallel)
     {
       std::vector<Failing> mine;
       MPSFSI_OMP(for schedule(static) nowait)
       for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
         const auto i = static_cast<std::size_t>(ii);
+        read[i] = 0;
         if (constraint_[i] == Constraint::prescribed || bonds_.intact_count(i) == 0) continue;
         vec_type direction;
-        const double s1 = failure_type::template principal<Dim, double>(sigma[i], direction);
-        if (s1 >= strength) mine.push_back({s1, i, direction});
+        const double s1 = failure_.template principal<Dim, double>(sigma[i], direction);
+        read[i] = s1;
+        if (s1 >= strength[i]) mine.push_back({s1, i, direction});
       }
       MPSFSI_OMP(critical)
       failing_.insert(failing_.end(), mine.begin(), mine.end());
@@ -532,6 +548,33 @@ class ElasticSolver {
     if (cut == 0) return false;
     bonds_changed();
     return true;
+  }
+
+  const std::vector<double>& failure_field(FieldHandle<double> h) const {
+    static const std::vector<double> none;
+    if constexpr (failure_type::enabled) return set_.field(h);
+    return none;
+  }
+
+  // Each particle's strength (the `strength` field): sigma_f, or what the failure model assigns.
+  void assign_strengths() {
+    strength_ = set_.template add_field<double>("strength");
+    failure_stress_ = set_.template add_field<double>("failure_stress");
+    auto& strength = set_.field(strength_);
+    if constexpr (detail::has_assign_strengths<failure_type>::value) {
+      const StrengthSetup setup{p_.tensile_strength, p_.youngs_modulus, p_.poisson_ratio, p_.l0, context_.volume,
+                                &set_.ids()};
+      failure_.assign_strengths(setup, strength);
+      if (strength.size() != set_.size())
+        detail::throw_invalid("ElasticSolver", "the failure model assigned " + std::to_string(strength.size()) +
+                                                   " strengths for " + std::to_string(set_.size()) + " particles");
+      for (std::size_t i = 0; i < strength.size(); ++i)
+        if (!(strength[i] > 0) || std::isnan(strength[i]))
+          detail::throw_invalid("ElasticSolver", "the failure model assigned particle " + std::to_string(i) +
+                                                     " a strength that is not positive");
+    } else {
+      std::fill(strength.begin(), strength.end(), p_.tensile_strength);
+    }
   }
 
   void bonds_changed() {
@@ -628,11 +671,13 @@ class ElasticSolver {
   SolidModelContext<Dim, double> context_;
   stress_model_type model_;
   contact_type contact_;
+  failure_type failure_;
   double mass_ = 0;
   FieldHandle<std::int32_t> body_, constraint_field_, fragment_;
   FieldHandle<vec_type> displacement_;
   FieldHandle<mat_type> stress_field_;
   FieldHandle<double> damage_, principal_;
+  FieldHandle<double> strength_, failure_stress_;  // with a failure model only
   std::vector<Constraint> constraint_;
   VecArray<Dim, double> prescribed_velocity_;  // the velocity, or the unit normal of a support
   VecArray<Dim, double> external_, force_;
