@@ -32,6 +32,7 @@ struct HydrostaticResult {
   double deflection = 0;  // mid-span, positive down, averaged over the window
   double load = 0;        // total vertical fluid force on the plate (N/m), positive down, averaged
   double max_load_deviation = 0;  // max |load / W - 1| over the window
+  double fluid_solves_per_step = 0;  // coupling iterations (one fluid solve each), mean over the run
   bool blew_up = false;
 };
 
@@ -62,9 +63,13 @@ HydrostaticResult run_hydrostatic(const scenes::HydrostaticPlate& scene, double 
   const double weight = water_weight(scene);
   HydrostaticResult r;
   int samples = 0;
+  int steps = 0, solves = 0;
   try {
     while (coupler.time() < t_end - 1e-12) {
       coupler.step();
+      ++steps;
+      solves += coupler.last_iterations();
+      r.fluid_solves_per_step = double(solves) / steps;
       if (coupler.time() < t_end - window - 1e-12) continue;
       const double load = -coupler.total_interface_force()[1];
       r.deflection += y0 - coupler.solid().particles().positions()[middle][1];
@@ -148,6 +153,18 @@ TEST_CASE("coupling schemes: where each is stable against the structure-to-fluid
   std::printf("load deviation over the last 10 ms: explicit 2.7: %s%.3f, explicit 27: %.3f, sub-iterated 1.0: %.3f\n",
               explicit_light.blew_up ? "blew up, " : "", explicit_light.max_load_deviation,
               explicit_heavy.max_load_deviation, iterated_light.max_load_deviation);
+  // The cost of the strongly coupled schemes: fluid solves per step at rho_s/rho_f = 1 and 2.7.
+  // Aitken must be stable at both. IQN-ILS is run and reported, not asserted: it does not converge
+  // here (docs/validation/fsi.md, open problems).
+  const auto iterated_27 = run_hydrostatic<SubIterated>(with_density(2700), l0, dt, t_end, window);
+  CHECK(!iterated_27.blew_up);
+  CHECK(iterated_27.max_load_deviation < 0.1);
+  const auto quasi_newton_1 = run_hydrostatic<InterfaceQuasiNewton>(with_density(1000), l0, dt, t_end, window);
+  const auto quasi_newton_27 = run_hydrostatic<InterfaceQuasiNewton>(with_density(2700), l0, dt, t_end, window);
+  std::printf("sub-iterated 2.7: load deviation %.3f; fluid solves per step, rho_s/rho_f = 1.0 / 2.7: Aitken "
+              "%.2f / %.2f; IQN-ILS %s / %s\n",
+              iterated_27.max_load_deviation, iterated_light.fluid_solves_per_step, iterated_27.fluid_solves_per_step,
+              quasi_newton_1.blew_up ? "not converged" : "converged", quasi_newton_27.blew_up ? "not converged" : "converged");
 }
 
 TEST_CASE("crack entry: a crack opened under water becomes surface and the water flows into it") {

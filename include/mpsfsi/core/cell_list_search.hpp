@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/detail/csr_builder.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
@@ -17,6 +18,7 @@
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Fixed-radius neighbour search on a uniform grid of cells no smaller than the radius (the
 // default search). build() bins the source points by a counting sort and keeps a copy of them
@@ -247,4 +249,5 @@ class CellListSearch {
   mutable detail::CsrScratch<Scalar> scratch_;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -4,7 +4,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "mpsfsi/core/abi.hpp"
+
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Base of every exception mpsfsi throws, so callers can catch the library's errors as one.
 class Error : public std::runtime_error {
@@ -47,4 +50,5 @@ namespace detail {
 }
 
 }  // namespace detail
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

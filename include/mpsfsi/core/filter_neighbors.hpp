@@ -5,11 +5,13 @@
 #include <type_traits>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 namespace detail {
 
 template <class Keep>
@@ -55,4 +57,5 @@ void filter_neighbors(const BasicNeighborList<Scalar>& in, Keep&& keep, BasicNei
   }
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/detail/csr_builder.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/detail/nanoflann_compat.hpp"
@@ -16,6 +17,7 @@
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Fixed-radius neighbour search on a nanoflann kd-tree: the alternative to CellListSearch, with
 // the same interface and the same results. It needs no grid, so it suits very uneven particle
@@ -113,4 +115,5 @@ class KdTreeSearch {
   mutable detail::CsrScratch<Scalar> scratch_;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -4,9 +4,11 @@
 #include <cstddef>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Fixed-radius neighbour lists in compressed sparse row form: the neighbours of query i are
 // indices[offsets[i] .. offsets[i+1]), in the order the search found them (deterministic for a
@@ -41,4 +43,5 @@ struct QueryOptions {
   bool store_distances = false;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -4,6 +4,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/kd_tree_search.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
@@ -11,6 +12,7 @@
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // A neighbour search is any type with the members of CellListSearch<Dim, Scalar>:
 //   static constexpr int dim; using scalar_type;
@@ -69,4 +71,5 @@ std::vector<Index> reorder_by_cell(ParticleSet<Dim, Scalar>& particles, CellList
   return new_to_old;
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -5,13 +5,17 @@
 // unknown-pragma warnings.
 #if defined(_OPENMP)
 #include <omp.h>
+
+#include "mpsfsi/core/abi.hpp"
 #define MPSFSI_PRAGMA(x) _Pragma(#x)
 #define MPSFSI_OMP(x) MPSFSI_PRAGMA(omp x)
 #else
 #define MPSFSI_OMP(x)
 #endif
 
-namespace mpsfsi::parallel {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace parallel {
 
 // Threads an OpenMP parallel region will use (1 without OpenMP).
 inline int max_threads() {
@@ -49,4 +53,6 @@ inline void set_num_threads(int n) {
 #endif
 }
 
-}  // namespace mpsfsi::parallel
+}  // namespace parallel
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

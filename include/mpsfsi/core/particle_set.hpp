@@ -10,10 +10,12 @@
 #include <utility>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // What a particle is. Fluid particles carry the flow; wall particles take part in the pressure
 // Poisson equation with a prescribed velocity; dummy particles only fill the number density
@@ -271,4 +273,5 @@ class ParticleSet {
   detail::FieldStore<std::int32_t> ints_;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

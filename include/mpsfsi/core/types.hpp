@@ -6,7 +6,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
+
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Particle index. 32 bits halve the memory traffic of neighbour lists; 2^31 particles is far
 // beyond what one process of this library simulates.
@@ -54,4 +57,5 @@ std::size_t first_non_finite(const VecArray<Dim, Scalar>& values) {
 }
 
 }  // namespace detail
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/particle_set.hpp"
@@ -11,6 +12,7 @@
 #include "mpsfsi/kernels/detail/pair.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Collision policies act on the predicted velocity u* of fluid particles:
 //   template <int Dim> void apply(x, kinds, list, l0, u_star, scratch)
@@ -73,4 +75,5 @@ struct KoshizukaCollision {
   }
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <string>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // What to do with negative pressures after the PPE solve.
 enum class NegativePressure { clamp_to_zero, keep };
@@ -89,4 +91,5 @@ struct FluidParameters {
   }
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

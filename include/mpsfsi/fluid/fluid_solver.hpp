@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/detail/spacing.hpp"
@@ -21,6 +22,7 @@
 #include "mpsfsi/fluid/fluid_parameters.hpp"
 #include "mpsfsi/fluid/free_surface.hpp"
 #include "mpsfsi/fluid/linear_solver.hpp"
+#include "mpsfsi/fluid/policy_checks.hpp"
 #include "mpsfsi/fluid/ssor_cg.hpp"
 #include "mpsfsi/fluid/ppe.hpp"
 #include "mpsfsi/kernels/divergence.hpp"
@@ -32,6 +34,7 @@
 #include "mpsfsi/kernels/weight.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // The policy bundle of FluidSolver. Override one entry by deriving:
 //   struct MyPolicies : FluidDefaults<2> { using linear_solver = JacobiCg; };
@@ -68,6 +71,10 @@ class FluidSolver {
   using Search = typename Policies::neighbor_search;
   static_assert(check_weight<Weight>());
   static_assert(check_neighbor_search<Search>());
+  static_assert(check_gradient_correction<typename Policies::gradient_correction, Weight, Dim>());
+  static_assert(check_linear_solver<typename Policies::linear_solver>());
+  static_assert(check_free_surface<typename Policies::free_surface, Dim>());
+  static_assert(check_collision<typename Policies::collision, Dim>());
 
  public:
   using vec_type = Vec<Dim, double>;
@@ -400,4 +407,5 @@ class FluidSolver {
   bool warned_dt_ = false;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

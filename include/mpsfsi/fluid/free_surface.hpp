@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/particle_set.hpp"
@@ -12,6 +13,7 @@
 #include "mpsfsi/kernels/lattice_constants.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Free-surface detectors. Each has
 //   static void detect(x, kinds, list, n, n0, beta, l0, re, surface)
@@ -64,4 +66,5 @@ struct NeighborCountSurface {
   }
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -12,9 +12,11 @@
 #include <cstdlib>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/fluid/linear_solver.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 namespace detail {
 
@@ -127,4 +129,5 @@ class HypreAmgCg {
   std::vector<HYPRE_Int> counts_;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

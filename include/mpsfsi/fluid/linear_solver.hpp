@@ -8,11 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/parallel.hpp"
 
 #include "mpsfsi/core/error.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Outcome of one linear solve; FluidSolver reports a solve that did not converge.
 struct SolveReport {
@@ -138,4 +140,5 @@ class EigenJacobiCg : public detail::EigenCg<Eigen::DiagonalPreconditioner<doubl
 class IncompleteCholeskyCg
     : public detail::EigenCg<Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>> {};
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

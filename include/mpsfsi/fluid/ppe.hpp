@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/particle_set.hpp"
@@ -14,6 +15,7 @@
 #include "mpsfsi/kernels/lattice_constants.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // The pressure Poisson equation, eq 11, discretised with the MPS Laplacian:
 //   (2d/(lambda n0)) sum_j w_ij (P_j - P_i) = s_i,
@@ -171,4 +173,5 @@ class PpeAssembler {
   std::size_t enclosed_fluid_ = 0;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -8,12 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/fluid/linear_solver.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 namespace detail {
 
@@ -408,4 +410,5 @@ class SsorCg {
   std::vector<double> lower_val_, upper_val_, dw_;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -6,10 +6,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Bond cutting across the crack plane of a failing particle (eqs 34-35, read as docs/theory.md,
 // section 5.3 explains: with r_c the midpoint of the bond, as printed, the two ends of every bond
@@ -63,4 +65,5 @@ std::size_t cut_bonds_across_plane(BondList<Dim, Scalar>& bonds, const VecArray<
   return cut;
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

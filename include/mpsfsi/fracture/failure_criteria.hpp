@@ -6,9 +6,11 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // A failure model (the `failure` policy of ElasticSolver) is an object the solver holds, built
 // from the parameters the user passes to the solver's constructor. It provides
@@ -100,4 +102,5 @@ struct MaxNormalStressAngle {
   }
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

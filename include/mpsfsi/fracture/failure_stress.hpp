@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
@@ -11,6 +12,7 @@
 #include "mpsfsi/solid/structure_surface.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // The stress tensor the failure criterion (eq 27) reads, per particle (ElasticSolver keeps one).
 // - Averaged (average_failure_stress) over the particle and its intact bonds, weights w0 and the
@@ -148,4 +150,5 @@ class FailureStressReadout {
   MatArray<Dim, double> surface_stress_, averaged_, smoothed_;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

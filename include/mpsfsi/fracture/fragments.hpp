@@ -4,10 +4,12 @@
 #include <cstddef>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // The fragments of a fractured solid: the connected pieces of its intact-bond graph. Two
 // particles are in the same fragment when a path of intact bonds joins them; a solid is broken
@@ -63,4 +65,5 @@ Fragments find_fragments(const BondList<Dim, Scalar>& bonds) {
   return find_fragments(bonds, [](std::size_t, Offset) { return true; });
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

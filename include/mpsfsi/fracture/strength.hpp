@@ -10,11 +10,13 @@
 #include <utility>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/fracture/failure_criteria.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // What a failure model may read when it assigns each particle its strength (once, when
 // ElasticSolver is built).
@@ -130,4 +132,5 @@ struct CrackBandStrength : Criterion {
   }
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <string>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Settings of FsiCoupler. The fluid's time step is the coupling step; the structure sub-steps
 // within it at its own stable step (ElasticSolver::advance_by).
@@ -36,4 +38,5 @@ struct CouplingParameters {
   }
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

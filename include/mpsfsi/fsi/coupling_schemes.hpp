@@ -1,7 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 
+#include <type_traits>
+#include <utility>
+
+#include "mpsfsi/core/abi.hpp"
+
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Coupling-scheme policies of FsiCoupler. One coupled step from t^n to t^n + dt:
 //
@@ -51,4 +57,52 @@ struct InterfaceQuasiNewton {
   int max_columns = 64;
 };
 
+// Compile-time check of a scheme (FsiCoupler static_asserts it): the members above, by kind.
+namespace detail {
+
+template <class S, class = void>
+struct has_scheme_basics : std::false_type {};
+template <class S>
+struct has_scheme_basics<S, std::void_t<decltype(bool(S::iterative)), decltype(static_cast<const char*>(S::name))>>
+    : std::true_type {};
+
+template <class S, class = void>
+struct has_iteration_controls : std::false_type {};
+template <class S>
+struct has_iteration_controls<S, std::void_t<decltype(int(std::declval<const S&>().max_iterations)),
+                                             decltype(double(std::declval<const S&>().tolerance)),
+                                             decltype(double(std::declval<const S&>().initial_relaxation))>>
+    : std::true_type {};
+
+template <class S, class = void>
+struct has_quasi_newton_flag : std::false_type {};
+template <class S>
+struct has_quasi_newton_flag<S, std::void_t<decltype(bool(S::quasi_newton))>> : std::true_type {};
+
+template <class S, class = void>
+struct has_quasi_newton_controls : std::false_type {};
+template <class S>
+struct has_quasi_newton_controls<S, std::void_t<decltype(int(std::declval<const S&>().reuse_steps)),
+                                                decltype(int(std::declval<const S&>().max_columns))>>
+    : std::true_type {};
+
+}  // namespace detail
+
+template <class S>
+constexpr bool check_coupling_scheme() {
+  static_assert(detail::has_scheme_basics<S>::value,
+                "coupling scheme lacks `static constexpr bool iterative` or `static constexpr const char* name`");
+  if constexpr (detail::has_scheme_basics<S>::value && S::iterative) {
+    static_assert(detail::has_iteration_controls<S>::value,
+                  "iterative coupling scheme lacks `max_iterations`, `tolerance` or `initial_relaxation`");
+    if constexpr (detail::has_quasi_newton_flag<S>::value) {
+      if constexpr (S::quasi_newton)
+        static_assert(detail::has_quasi_newton_controls<S>::value,
+                      "quasi-Newton coupling scheme lacks `reuse_steps` or `max_columns`");
+    }
+  }
+  return true;
+}
+
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
@@ -25,6 +26,7 @@
 #include "mpsfsi/kernels/weight.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Fully Lagrangian fluid-structure interaction (the paper's eqs 9-10, 18-19, Fig 1;
 // docs/theory.md, section 4), for a FluidSolver and an ElasticSolver of the same dimension:
@@ -51,6 +53,7 @@ namespace mpsfsi {
 // The Scheme policy (coupling_schemes.hpp) decides how the two are advanced within a step.
 template <class Fluid, class Solid, class Scheme = ExplicitPartitioned>
 class FsiCoupler {
+  static_assert(check_coupling_scheme<Scheme>());
   static_assert(Fluid::dimension == Solid::dimension,
                 "FsiCoupler: the fluid and the solid solver have different dimensions (FluidSolver<Dim> and "
                 "ElasticSolver<Dim> must use the same Dim)");
@@ -392,4 +395,5 @@ class FsiCoupler {
   QuasiNewtonModel quasi_newton_;  // InterfaceQuasiNewton: the least-squares model
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -4,12 +4,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // The structure's coupling term in the fluid predictor, eqs 9-10: f_S->F,i = d u_IF / dt, the
 // acceleration of the interface next to fluid particle i. It is taken as the w-weighted average
@@ -47,4 +49,5 @@ void interface_accelerations(const VecArray<Dim, Scalar>& structure_x, const Vec
   }
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

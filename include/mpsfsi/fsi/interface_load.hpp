@@ -6,12 +6,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // The fluid's load on a structure, eqs 18-19 (docs/theory.md, section 4.3). For each surface particle
 // i of the structure, with outward normal n_i:
@@ -86,4 +88,5 @@ Scalar full_wetting_weight(Scalar l0, Scalar re) {
   return sum;
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

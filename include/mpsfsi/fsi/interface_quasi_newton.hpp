@@ -9,9 +9,11 @@
 
 #include <Eigen/Dense>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // The interface quasi-Newton update with an inverse Jacobian from a least-squares model, IQN-ILS
 // (Degroote, Bathe & Vierendeels 2009; docs/theory.md, section 4.6), on the interface load F of
@@ -113,4 +115,5 @@ class InterfaceQuasiNewtonModel {
   Eigen::ColPivHouseholderQR<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> qr_;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

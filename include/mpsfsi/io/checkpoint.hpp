@@ -12,6 +12,7 @@
 #include <typeinfo>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/io/detail/output_file.hpp"
@@ -41,6 +42,7 @@
 // written to `path.tmp` and renamed over `path` (detail::AtomicFile), so a run killed while
 // writing leaves the previous checkpoint intact.
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 inline constexpr std::uint32_t checkpoint_format_version = 1;
 
@@ -297,4 +299,5 @@ void read_checkpoint(const std::string& path, Solver& solver, Extra&... extra) {
   std::tie(extra...) = std::move(restored_extra);
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

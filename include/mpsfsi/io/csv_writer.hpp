@@ -12,10 +12,12 @@
 #include <utility>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/io/detail/output_file.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Time series as CSV: a header of column names, then one row of numbers per call. Values carry
 // max_digits10 (17) significant digits so they read back bit for bit, and each row is flushed,
@@ -133,4 +135,5 @@ class CsvWriter {
   std::size_t rows_ = 0;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -14,6 +14,7 @@
 #include <string>
 #include <utility>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 
 #if __has_include(<unistd.h>)
@@ -23,6 +24,7 @@
 #endif
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // How ProgressReporter draws: `automatic` redraws one line when the stream is std::cout,
 // std::cerr or std::clog on a terminal and prints one line per report otherwise (log files,
@@ -204,4 +206,5 @@ class ProgressReporter {
   std::size_t drawn_ = 0;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

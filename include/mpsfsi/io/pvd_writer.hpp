@@ -10,10 +10,12 @@
 #include <utility>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/io/detail/output_file.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // "prefix_000042.vtu": zero-padded so that a directory listing sorts in time order. Numbers
 // wider than `digits` are written in full.
@@ -96,4 +98,5 @@ class PvdWriter {
   std::vector<Entry> entries_;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

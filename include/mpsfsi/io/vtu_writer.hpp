@@ -13,12 +13,14 @@
 #include <variant>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/io/detail/output_file.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 namespace detail {
 
@@ -246,4 +248,5 @@ void write_vtu(const std::string& path, const ParticleSet<Dim, Scalar>& particle
   w.write(path);
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

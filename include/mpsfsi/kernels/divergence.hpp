@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
@@ -12,6 +13,7 @@
 #include "mpsfsi/kernels/weight.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // MPS divergence of a vector field with a correction policy:
 //   <div u>_i = (1/n0) sum_j (u_j - u_i) . (C_i r_ij) / |r_ij|^2 w_ij,
@@ -47,4 +49,5 @@ void divergence(const VecArray<Dim, Scalar>& x, const BasicNeighborList<Scalar>&
   }
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

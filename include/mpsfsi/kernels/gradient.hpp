@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
@@ -13,6 +14,7 @@
 #include "mpsfsi/kernels/weight.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Which value phi_j is compared with in the gradient sum.
 enum class GradientReference {
@@ -61,4 +63,5 @@ void gradient(const VecArray<Dim, Scalar>& x, const BasicNeighborList<Scalar>& l
   }
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
@@ -13,6 +14,7 @@
 #include "mpsfsi/kernels/weight.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Gradient-correction policies. Both are called the same way:
 //   correction.template update<Weight>(x, list, constants);   // once per step
@@ -83,4 +85,5 @@ class KhayyerGotohCorrection {
   std::vector<std::uint8_t> corrected_;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
@@ -12,6 +13,7 @@
 #include "mpsfsi/kernels/weight.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // MPS Laplacian of Koshizuka & Oka 1996:
 //   <lap phi>_i = (2d / (lambda n0)) sum_j (phi_j - phi_i) w_ij,
@@ -41,4 +43,5 @@ void laplacian(const VecArray<Dim, Scalar>& x, const BasicNeighborList<Scalar>& 
   }
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -4,12 +4,14 @@
 #include <cmath>
 #include <string>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/kernels/weight.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Constants of an MPS operator with effective radius re: the number density n0 of a full
 // neighbourhood (eq 12 on the initial lattice) and the Laplacian's lambda (Koshizuka & Oka 1996)
@@ -65,4 +67,5 @@ int ideal_neighbor_count(Scalar l0, Scalar re) {
   return count;
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

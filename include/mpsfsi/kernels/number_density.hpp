@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
@@ -11,6 +12,7 @@
 #include "mpsfsi/kernels/weight.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Particle number density, eq 12: n_i = sum_{j != i} w(|r_j - r_i|), over the neighbour list of
 // the query points `x_query` into the source points `x_source` (the same array for a set looking
@@ -46,4 +48,5 @@ void number_density(const VecArray<Dim, Scalar>& x, const BasicNeighborList<Scal
   number_density<Weight>(x, x, list, re, n, false);
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -6,7 +6,10 @@
 #include <type_traits>
 #include <utility>
 
+#include "mpsfsi/core/abi.hpp"
+
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // A weight policy is a type with `static Scalar value(Scalar r, Scalar re)`, zero for r >= re.
 // Operators take it as a template argument: number_density<KoshizukaWeight>(...).
@@ -54,4 +57,5 @@ constexpr bool check_weight() {
   return true;
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -4,11 +4,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/scenes/tank.hpp"
 
-namespace mpsfsi::scenes {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace scenes {
 
 // The dam break of Martin & Moyce (1952) and Koshizuka & Oka (1996): a water column `width` wide
 // and `height` high against the left wall of an open tank `tank_length` long and `tank_height`
@@ -52,4 +55,6 @@ double column_height(const ParticleSet<Dim>& set, double l0) {
   return top;
 }
 
-}  // namespace mpsfsi::scenes
+}  // namespace scenes
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

@@ -6,12 +6,15 @@
 #include <string>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/scenes/tank.hpp"
 
-namespace mpsfsi::scenes {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace scenes {
 
 // Dam break through an elastic gate (Antoci, Gallati & Sibilla 2007): water `water_width` wide
 // and `water_height` high, held on its right by a rubber gate `gate_length` long and
@@ -129,4 +132,6 @@ struct ElasticGate {
   }
 };
 
-}  // namespace mpsfsi::scenes
+}  // namespace scenes
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

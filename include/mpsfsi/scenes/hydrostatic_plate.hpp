@@ -5,12 +5,15 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/scenes/tank.hpp"
 
-namespace mpsfsi::scenes {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace scenes {
 
 // Hydrostatic water column on a clamped elastic plate (Fourey et al. 2017; Khayyer et al. 2018),
 // 2D: water `span` wide and `water_height` high between two rigid side walls; its bottom is an
@@ -103,4 +106,6 @@ struct HydrostaticPlate {
   }
 };
 
-}  // namespace mpsfsi::scenes
+}  // namespace scenes
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

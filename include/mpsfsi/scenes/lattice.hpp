@@ -6,12 +6,15 @@
 #include <random>
 #include <string>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/core/types.hpp"
 
-namespace mpsfsi::scenes {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace scenes {
 
 // Number of lattice points of spacing l0 from lo to hi inclusive, allowing for round-off.
 template <class Scalar>
@@ -59,4 +62,6 @@ void jitter(ParticleSet<Dim, Scalar>& set, Scalar amplitude, std::uint32_t seed 
     for (int k = 0; k < Dim; ++k) p[k] += u(rng);
 }
 
-}  // namespace mpsfsi::scenes
+}  // namespace scenes
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

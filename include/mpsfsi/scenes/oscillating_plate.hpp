@@ -5,10 +5,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
 
-namespace mpsfsi::scenes {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace scenes {
 
 // The oscillating clamped plate of Gray, Monaghan & Swift (2001): a plate of length L and
 // thickness H sticking out of a clamp at x = 0, started with the first cantilever mode shape
@@ -73,4 +76,6 @@ struct OscillatingPlate {
   }
 };
 
-}  // namespace mpsfsi::scenes
+}  // namespace scenes
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

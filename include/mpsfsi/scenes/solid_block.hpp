@@ -5,12 +5,15 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/scenes/lattice.hpp"
 
-namespace mpsfsi::scenes {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace scenes {
 
 // Solid particles filling the block [lower, upper] with one particle per l0^d cell, at the cell
 // centres (k + 1/2) l0: the material surface is the block surface, so a beam of height h has
@@ -50,4 +53,6 @@ std::size_t append(ParticleSet<Dim, Scalar>& set, const ParticleSet<Dim, Scalar>
   return first;
 }
 
-}  // namespace mpsfsi::scenes
+}  // namespace scenes
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

@@ -6,12 +6,15 @@
 #include <cstdint>
 #include <string>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/scenes/lattice.hpp"
 
-namespace mpsfsi::scenes {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace scenes {
 
 // Convention of the scenes: a region [0, L] is filled by particles at (k + 1/2) l0, so each
 // particle stands for the cell of side l0 around it and the region's faces lie half a spacing
@@ -64,4 +67,6 @@ void add_tank(ParticleSet<Dim, Scalar>& set, const typename ParticleSet<Dim, Sca
       }
 }
 
-}  // namespace mpsfsi::scenes
+}  // namespace scenes
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
@@ -15,6 +16,7 @@
 #include "mpsfsi/kernels/weight.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // The fixed bonds of a total-Lagrangian solid (docs/theory.md, section 3.2): every pair of particles
 // of the same body closer than re in the reference configuration, stored per particle in CSR form
@@ -159,4 +161,5 @@ class BondList {
   std::size_t cut_count_ = 0;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/filter_neighbors.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
@@ -15,6 +16,7 @@
 #include "mpsfsi/solid/bonds.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // A contact policy of ElasticSolver provides
 //   void initialize(std::size_t n, Scalar distance, Scalar stiffness, Scalar damping);
@@ -155,4 +157,5 @@ class PenaltyContact {
   std::size_t cuts_at_build_ = 0, active_ = 0, rebuilds_ = 0;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

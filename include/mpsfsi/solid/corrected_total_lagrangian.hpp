@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/detail/csr_builder.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
@@ -13,6 +14,7 @@
 #include "mpsfsi/solid/detail/packed_bonds.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // A stress-model policy of ElasticSolver provides
 //   static constexpr const char* name;
@@ -47,11 +49,8 @@ class CorrectedTotalLagrangian {
   using mat_type = Mat<Dim, Scalar>;
   using fit_type = DeformationFit<Dim, Scalar>;
   static constexpr int width = fit_type::width;
-#if defined(__AVX__)
-  static constexpr int lanes = 4;  // particles per SIMD step of the force loop: one AVX register
-#else
-  static constexpr int lanes = 2;  // one SSE2 register
-#endif
+  // Particles per SIMD step of the force loop: one register of doubles (core/abi.hpp).
+  static constexpr int lanes = simd_double_lanes;
 
   Scalar stabilization = Scalar(0.1);  // alpha
 
@@ -286,4 +285,5 @@ class CorrectedTotalLagrangian {
   std::vector<Scalar> scratch_;  // du_ij of the group in hand (Dim x lanes per slot), per thread
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -7,12 +7,14 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
 #include "mpsfsi/solid/solid_parameters.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // What a stress model needs to know about the material and the discretisation.
 template <int Dim, class Scalar = double>
@@ -259,4 +261,5 @@ void fitted_cauchy_stresses(const DeformationFit<Dim, Scalar>& fit, const VecArr
 }
 
 }  // namespace detail
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/detail/spacing.hpp"
@@ -22,6 +23,7 @@
 #include "mpsfsi/fracture/failure_criteria.hpp"
 #include "mpsfsi/fracture/failure_stress.hpp"
 #include "mpsfsi/fracture/fragments.hpp"
+#include "mpsfsi/fracture/policy_checks.hpp"
 #include "mpsfsi/fracture/strength.hpp"
 #include "mpsfsi/kernels/lattice_constants.hpp"
 #include "mpsfsi/kernels/weight.hpp"
@@ -30,9 +32,11 @@
 #include "mpsfsi/solid/corrected_total_lagrangian.hpp"
 #include "mpsfsi/solid/deformation.hpp"
 #include "mpsfsi/solid/hwang_model.hpp"
+#include "mpsfsi/solid/policy_checks.hpp"
 #include "mpsfsi/solid/solid_parameters.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // The policy bundle of ElasticSolver. Override one entry by deriving:
 //   struct MyPolicies : SolidDefaults<2> { using contact = NoContact; };
@@ -92,6 +96,9 @@ template <int Dim, class Policies = SolidDefaults<Dim>>
 class ElasticSolver {
   using Weight = typename Policies::weight;
   static_assert(check_weight<Weight>());
+  static_assert(check_stress_model<typename Policies::stress_model, Dim>());
+  static_assert(check_contact<typename Policies::contact, Dim>());
+  static_assert(check_failure_model<typename Policies::failure, Dim>());
 
  public:
   using vec_type = Vec<Dim, double>;
@@ -701,4 +708,5 @@ class ElasticSolver {
   double first_failure_time_ = -1;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

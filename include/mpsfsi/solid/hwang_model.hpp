@@ -6,12 +6,14 @@
 
 #include <Eigen/Geometry>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
 #include "mpsfsi/solid/deformation.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // The paper's structure model (eqs 16-17 with particle rotation, eq 8; Hwang et al. 2014, 2016),
 // read as docs/theory.md, section 3.4 describes:
@@ -178,4 +180,5 @@ class HwangModel {
   std::vector<spin_type> spin_, torque_;
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -6,10 +6,12 @@
 #include <limits>
 #include <string>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/types.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // How a 2D solid is read out of plane (docs/theory.md, section 3.1). Plane strain keeps the 3D Lame
 // constants; plane stress replaces lambda by lambda* = 2 lambda mu / (lambda + 2 mu). Ignored in 3D.
@@ -138,4 +140,5 @@ struct SolidParameters {
   }
 };
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

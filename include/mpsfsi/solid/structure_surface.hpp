@@ -4,11 +4,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
 
 namespace mpsfsi {
+inline namespace MPSFSI_ABI {
 
 // Outward normals of a structure from the gradient of its number density (docs/theory.md,
 // section 4.1), over the intact bonds at the current positions:
@@ -53,4 +55,5 @@ void structure_normals(const BondList<Dim, Scalar>& bonds, const VecArray<Dim, S
   }
 }
 
+}  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

@@ -6,11 +6,14 @@
 #include <cstddef>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 
-namespace mpsfsi::detail {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace detail {
 
 // Per-thread buffers reused from one build to the next, so a steady-state rebuild allocates
 // nothing once the buffers have grown to size. `length` is the part of each buffer in use; the
@@ -117,4 +120,6 @@ void build_csr(std::size_t num_queries, const QueryOptions& options, CsrScratch<
   }
 }
 
-}  // namespace mpsfsi::detail
+}  // namespace detail
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

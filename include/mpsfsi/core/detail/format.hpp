@@ -4,7 +4,11 @@
 #include <cstdio>
 #include <string>
 
-namespace mpsfsi::detail {
+#include "mpsfsi/core/abi.hpp"
+
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace detail {
 
 // A number for an error or log message with six significant digits ("4.3e-07", "0.0125",
 // "1.2e+06"): std::to_string's fixed six decimals would print a 4.3e-7 s time step as 0.000000.
@@ -14,4 +18,6 @@ inline std::string format_number(double value) {
   return buffer;
 }
 
-}  // namespace mpsfsi::detail
+}  // namespace detail
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

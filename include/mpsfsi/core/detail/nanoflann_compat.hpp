@@ -9,11 +9,16 @@
 #include <cstddef>
 #include <nanoflann.hpp>
 
+#include "mpsfsi/core/abi.hpp"
+
 #if !defined(NANOFLANN_VERSION)
 #error "mpsfsi: nanoflann.hpp did not define NANOFLANN_VERSION"
 #endif
 
-namespace mpsfsi::detail::nanoflann_compat {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace detail {
+namespace nanoflann_compat {
 
 #if NANOFLANN_VERSION >= 0x150
 using SearchParameters = nanoflann::SearchParameters;
@@ -59,4 +64,7 @@ class CallbackResultSet {
   Callback& callback_;
 };
 
-}  // namespace mpsfsi::detail::nanoflann_compat
+}  // namespace nanoflann_compat
+}  // namespace detail
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

@@ -7,10 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 
-namespace mpsfsi::detail {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace detail {
 
 // Throws InvalidInput when the particles' spacing disagrees with l0. The mass rho l0^d and the
 // lattice constants n0 and lambda (docs/theory.md, section 1.2) assume particles l0 apart; the
@@ -28,4 +31,6 @@ inline void check_median_spacing(std::vector<double>& nearest, double l0, const 
                            " m: build them l0 apart or set l0 to their spacing");
 }
 
-}  // namespace mpsfsi::detail
+}  // namespace detail
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

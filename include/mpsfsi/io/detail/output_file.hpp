@@ -10,11 +10,14 @@
 #include <system_error>
 #include <utility>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/error.hpp"
 
 // File plumbing shared by the writers: C stdio rather than iostreams because fopen/fwrite set
 // errno on POSIX, so an IoError can say *why* a path could not be written.
-namespace mpsfsi::detail {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace detail {
 
 // The OS's reason for errno value `err`; std::generic_category is thread-safe where strerror
 // is not.
@@ -122,4 +125,6 @@ inline std::string xml_escape(std::string_view s) {
   return out;
 }
 
-}  // namespace mpsfsi::detail
+}  // namespace detail
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

@@ -5,12 +5,15 @@
 #include <cstddef>
 #include <string>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/neighbor_list.hpp"
 #include "mpsfsi/core/types.hpp"
 
-namespace mpsfsi::detail {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace detail {
 
 // |r_ij| for entry k of a neighbour list: the stored distance when the search kept it.
 template <int Dim, class Scalar>
@@ -39,4 +42,6 @@ inline void require_positive_constants(Scalar re, Scalar n0, const char* where) 
                              ", n0 = " + detail::format_number(n0) + ")");
 }
 
-}  // namespace mpsfsi::detail
+}  // namespace detail
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

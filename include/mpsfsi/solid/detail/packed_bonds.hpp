@@ -8,12 +8,15 @@
 
 #include <Eigen/Core>
 
+#include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
 #include "mpsfsi/solid/deformation.hpp"
 
-namespace mpsfsi::detail {
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace detail {
 
 // The per-bond constants of the corrected model's force loop, laid out so that the loop runs over
 // `Lanes` particles at once, one per SIMD lane. Particles are taken in groups of `Lanes`
@@ -114,4 +117,6 @@ class PackedBonds {
   std::vector<Index> neighbor_;
 };
 
-}  // namespace mpsfsi::detail
+}  // namespace detail
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

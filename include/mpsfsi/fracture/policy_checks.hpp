@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "mpsfsi/core/abi.hpp"
+#include "mpsfsi/core/types.hpp"
+#include "mpsfsi/fracture/strength.hpp"
+
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+
+// Compile-time check of ElasticSolver's failure-model slot (failure_criteria.hpp states the
+// contract). ElasticSolver static_asserts it, so a model written wrong fails with a message
+// naming the member rather than with an error deep in the solver, or, for a direction taken by
+// value, instead of compiling and leaving the crack normal unset.
+namespace detail {
+
+template <class F, class = void>
+struct has_failure_enabled : std::false_type {};
+template <class F>
+struct has_failure_enabled<F, std::void_t<decltype(bool(F::enabled))>> : std::true_type {};
+
+// principal(sigma, direction) with `direction` an lvalue (Direction = Vec&) or an rvalue
+// (Direction = Vec): a model that accepts the rvalue takes the direction by value or by const
+// reference and cannot return the crack normal through it.
+template <class F, int Dim, class Direction, class = void>
+struct has_failure_principal : std::false_type {};
+template <class F, int Dim, class Direction>
+struct has_failure_principal<F, Dim, Direction,
+                             std::void_t<decltype(double(std::declval<const F&>().template principal<Dim, double>(
+                                 std::declval<const Mat<Dim, double>&>(), std::declval<Direction>())))>>
+    : std::true_type {};
+
+template <class F, class = void>
+struct names_assign_strengths : std::false_type {};
+template <class F>
+struct names_assign_strengths<F, std::void_t<decltype(&F::assign_strengths)>> : std::true_type {};
+
+}  // namespace detail
+
+template <class F, int Dim>
+constexpr bool check_failure_model() {
+  static_assert(detail::has_failure_enabled<F>::value, "failure model lacks `static constexpr bool enabled`");
+  static_assert(detail::has_failure_principal<F, Dim, Vec<Dim, double>&>::value,
+                "failure model lacks `template <int Dim, class Scalar> Scalar principal(const Mat<Dim, Scalar>& sigma, "
+                "Vec<Dim, Scalar>& direction) const` (or static)");
+  static_assert(!detail::has_failure_principal<F, Dim, Vec<Dim, double>>::value,
+                "failure model's principal() must take the direction as `Vec<Dim, Scalar>&`: it returns the crack "
+                "normal through it");
+  static_assert(!detail::names_assign_strengths<F>::value || detail::has_assign_strengths<F>::value,
+                "failure model's assign_strengths must be `void assign_strengths(const StrengthSetup&, "
+                "std::vector<double>& strength) const`");
+  return true;
+}
+
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi
