@@ -35,8 +35,8 @@ struct BarFailure {
 };
 
 // Plane stress, nu = 0: the bar is in uniaxial tension. The right grip's speed ramps up over
-// 0.4 ms (nine wave transits) and a light mass damping (1000 1/s, 1.5 % of the lowest mode's
-// critical) keeps the loading quasi-static. sigma_i is the stress the criterion read at each
+// 0.4 ms (nine wave transits) and a light mass damping (1000 1/s, 0.7 % of critical for the
+// lowest axial mode, omega = pi c / L) keeps the loading quasi-static. sigma_i is the stress the criterion read at each
 // particle (ElasticSolver::criterion_stresses) when the first one failed.
 BarFailure pull_weibull_bar(std::uint64_t seed) {
   ParticleSet<2> set = scenes::material_block<2>(Vec<2>(0, 0), Vec<2>(bar_length, bar_height), bar_l0);

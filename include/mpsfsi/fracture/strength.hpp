@@ -72,7 +72,7 @@ inline double uniform_open01(std::uint64_t seed, std::int64_t id) {
 // Criterion's.
 template <class Criterion = MaxPrincipalStress>
 struct WeibullStrength : Criterion {
-  double modulus = 0;           // m (required; sea and lake ice: about 5-12)
+  double modulus = 0;           // m (required)
   double reference_volume = 0;  // V0 in m^d (required)
   std::uint64_t seed = 1;
 
