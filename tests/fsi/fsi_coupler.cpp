@@ -156,6 +156,46 @@ TEST_CASE("fsi.coupler: one step keeps fluid and structure in time and loads the
   }
 }
 
+// Coupling schemes that misuse the coupler's Step: each is a clear InvalidInput, not a step
+// that silently leaves the fluid and the structure at different times.
+struct SkipsTheStructure {
+  static constexpr bool iterative = false;
+  static constexpr const char* name = "skips the structure";
+  template <class Step>
+  void advance(Step& step) const {
+    step.solve_fluid();
+  }
+};
+struct RepeatsWithoutKeepingTheStart {
+  static constexpr bool iterative = false;
+  static constexpr const char* name = "repeats";
+  template <class Step>
+  void advance(Step& step) const {
+    step.solve_fluid();
+    step.solve_fluid();
+  }
+};
+struct LoadsBeforeSolving {
+  static constexpr bool iterative = false;
+  static constexpr const char* name = "loads first";
+  template <class Step>
+  void advance(Step& step) const {
+    step.fluid_load(step.load());
+  }
+};
+
+TEST_CASE("fsi.coupler: a coupling scheme that misuses the step is refused with a clear error") {
+  SmallCase c;
+  const auto fails_with = [&](auto scheme, const char* what) {
+    FsiCoupler<FluidSolver<2>, ElasticSolver<2>, decltype(scheme)> coupler(c.scene.fluid_particles(c.l0),
+                                                                           c.fluid_parameters(), c.solid(c.l0));
+    CHECK_THROWS_WITH_AS(coupler.step(), doctest::Contains(what), InvalidInput);
+  };
+  fails_with(SkipsTheStructure{}, "'skips the structure' ended a step without advancing the structure");
+  fails_with(RepeatsWithoutKeepingTheStart{}, "'repeats' solved the fluid twice in one step but declares `iterative = false`");
+  fails_with(LoadsBeforeSolving{}, "'loads first' called Step::fluid_load before the step's first solve_fluid");
+}
+
 // A user's load on the structure (applied_force) adds to the fluid's: a downward force on the
 // plate's middle particle moves it further down than the water alone; bad entries are refused.
 TEST_CASE("fsi.coupler: an applied force adds to the fluid's load, and a bad one is refused") {

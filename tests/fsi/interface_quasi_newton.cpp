@@ -24,7 +24,7 @@ struct LinearInterface {
     a = q * g.asDiagonal() * q.transpose();
   }
   // Iterates until |r| <= 1e-10 |F~| and returns the number of fluid answers used.
-  int solve(InterfaceQuasiNewtonModel<2>& model, const Eigen::VectorXd& b, VecArray<2>& load, int limit) const {
+  int solve(InterfaceQuasiNewtonModel<>& model, const Eigen::VectorXd& b, VecArray<2>& load, int limit) const {
     model.begin_step();
     VecArray<2> trial(particles), residual(particles);
     for (int k = 1; k <= limit; ++k) {
@@ -59,7 +59,7 @@ TEST_SUITE("fsi") {
 TEST_CASE("fsi.interface_quasi_newton: the root of a linear interface that the fixed point cannot reach") {
   const LinearInterface lin;
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(LinearInterface::n, 1.0, 2.0);
-  InterfaceQuasiNewtonModel<2> model(0);
+  InterfaceQuasiNewtonModel<> model(0);
   VecArray<2> load(LinearInterface::particles, Vec<2>::Zero());
   const int answers = lin.solve(model, b, load, 30);
   MESSAGE("IQN-ILS: " << answers << " answers for 8 unknowns");
@@ -71,7 +71,7 @@ TEST_CASE("fsi.interface_quasi_newton: the root of a linear interface that the f
 // the next step, a different right-hand side on the same map, needs a single correction.
 TEST_CASE("fsi.interface_quasi_newton: columns reused from the last step make the next one Newton") {
   const LinearInterface lin;
-  InterfaceQuasiNewtonModel<2> with_reuse(1), without_reuse(0);
+  InterfaceQuasiNewtonModel<> with_reuse(1), without_reuse(0);
   const Eigen::VectorXd b1 = Eigen::VectorXd::LinSpaced(LinearInterface::n, 1.0, 2.0);
   const Eigen::VectorXd b2 = Eigen::VectorXd::LinSpaced(LinearInterface::n, 2.0, -1.0);
   VecArray<2> load(LinearInterface::particles, Vec<2>::Zero()), fresh = load;

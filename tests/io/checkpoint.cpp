@@ -203,7 +203,14 @@ TEST_CASE("io.checkpoint: a file that does not match the solver, or is damaged, 
   SUBCASE("a newer format version") {
     auto bytes = good;
     bytes[8] = static_cast<char>(checkpoint_format_version + 1);
-    fails_with(bytes, "format version 2; this build reads versions up to 1");
+    const std::string newer = std::to_string(checkpoint_format_version + 1);
+    const std::string current = std::to_string(checkpoint_format_version);
+    fails_with(bytes, ("format version " + newer + "; this build reads versions up to " + current).c_str());
+  }
+  SUBCASE("an older format version than this build reads") {
+    auto bytes = good;
+    bytes[8] = static_cast<char>(oldest_readable_checkpoint_format - 1);
+    fails_with(bytes, ("format version " + std::to_string(oldest_readable_checkpoint_format - 1) + ", older").c_str());
   }
   SUBCASE("another dimension, policy bundle or particle count") {
     auto three_d = small_dam_break<3>();

@@ -83,11 +83,18 @@ class FluidSolver {
   using weight_type = Weight;
   static constexpr int dimension = Dim;
 
-  // Takes the particles (fluid, wall and dummy) and the parameters; throws InvalidInput on an
-  // empty set, a set without fluid, non-finite values, overlapping particles, fluid
-  // spaced otherwise than l0 or bad parameters.
-  FluidSolver(ParticleSet<Dim> particles, parameters_type params)
-      : p_(std::move(params)), set_(std::move(particles)), search_(radius_of(p_)) {
+  // Takes the particles (fluid, wall and dummy), the parameters and, optionally, the gradient
+  // correction and linear solver objects with their own settings (default-constructed
+  // otherwise); throws InvalidInput on an empty set, a set without fluid, non-finite values,
+  // overlapping particles, fluid spaced otherwise than l0 or bad parameters.
+  FluidSolver(ParticleSet<Dim> particles, parameters_type params,
+              typename Policies::gradient_correction correction = typename Policies::gradient_correction(),
+              typename Policies::linear_solver linear_solver = typename Policies::linear_solver())
+      : p_(std::move(params)),
+        set_(std::move(particles)),
+        search_(radius_of(p_)),
+        correction_(std::move(correction)),
+        solver_(std::move(linear_solver)) {
     p_.validate();
     if (set_.empty()) detail::throw_invalid("FluidSolver", "the particle set is empty");
     set_.validate();
@@ -284,6 +291,11 @@ class FluidSolver {
     check_external_acceleration();
     update_neighbors();
   }
+  // After a return to a state this solver held earlier in the run (an iterative coupling
+  // scheme's start of step, core/detail/state_archive.hpp): the next step uses the neighbour
+  // lists it would have used without the return, rebuilt at its start (the first step: the
+  // constructor's), so nothing is rebuilt here.
+  void snapshot_restored() { check_external_acceleration(); }
 
  private:
   using clock = std::chrono::steady_clock;

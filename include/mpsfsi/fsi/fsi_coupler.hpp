@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <optional>
+#include <deque>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -14,13 +14,13 @@
 #include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/detail/format.hpp"
+#include "mpsfsi/core/detail/state_archive.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/fsi/coupling_parameters.hpp"
 #include "mpsfsi/fsi/coupling_schemes.hpp"
 #include "mpsfsi/fsi/interface_acceleration.hpp"
 #include "mpsfsi/fsi/interface_load.hpp"
-#include "mpsfsi/fsi/interface_quasi_newton.hpp"
 #include "mpsfsi/fsi/structure_surface.hpp"
 #include "mpsfsi/kernels/lattice_constants.hpp"
 #include "mpsfsi/kernels/weight.hpp"
@@ -50,10 +50,9 @@ inline namespace MPSFSI_ABI {
 // - The interface pressure at x_i + 0.5 l0 n_i (eqs 18-19) becomes the structure's load.
 // - The structure sub-steps through each fluid step (dt_f / dt_s steps of its own stable dt).
 // - The interface acceleration enters the fluid predictor (eq 10), unless switched off.
-// The Scheme policy (coupling_schemes.hpp) decides how the two are advanced within a step.
+// The Scheme policy (coupling_schemes.hpp) advances the two within a step, through Step.
 template <class Fluid, class Solid, class Scheme = ExplicitPartitioned>
 class FsiCoupler {
-  static_assert(check_coupling_scheme<Scheme>());
   static_assert(Fluid::dimension == Solid::dimension,
                 "FsiCoupler: the fluid and the solid solver have different dimensions (FluidSolver<Dim> and "
                 "ElasticSolver<Dim> must use the same Dim)");
@@ -67,6 +66,57 @@ class FsiCoupler {
   using fluid_type = Fluid;
   using solid_type = Solid;
   using scheme_type = Scheme;
+  using vec_array = VecArray<dimension, scalar_type>;
+
+  // What a coupling scheme advances one step through (coupling_schemes.hpp lists the calls).
+  class Step {
+   public:
+    static constexpr int dimension = FsiCoupler::dimension;
+    using scalar_type = FsiCoupler::scalar_type;
+    using vec_array = FsiCoupler::vec_array;
+
+    // The fluid's step from t^n with the structure as its moving wall: at its velocity at t^n on
+    // the first solve of the step; on a repeat (iterative schemes) the fluid first returns to t^n
+    // and the wall moves at the structure's mean velocity over the step, if it has advanced.
+    void solve_fluid() { c_.solve_fluid(); }
+    // The fluid's load on each structure particle after the last solve (eqs 18-19).
+    void fluid_load(vec_array& load) {
+      c_.require_fluid_solved("fluid_load");
+      c_.compute_loads(load);
+    }
+    // The structure from t^n (returned to it on a repeat) to t^n + dt under `load` plus the
+    // user's applied_force(), in sub-steps of its own stable step.
+    void advance_structure(const vec_array& load) { c_.advance_structure_in_step(load); }
+    // The interface load kept across steps; what the step leaves here is interface_force().
+    vec_array& load() { return c_.load_; }
+    // Scratch array k, one entry per structure particle, kept by the coupler across steps (its
+    // content at the start of a step is unspecified).
+    vec_array& workspace(std::size_t k) {
+      while (c_.workspace_.size() <= k) c_.workspace_.emplace_back();
+      c_.workspace_[k].resize(c_.load_.size());
+      return c_.workspace_[k];
+    }
+    // The fluid's time step of this step (after the first solve_fluid), the step's number
+    // (1 for the first step of the run) and the fluid solves so far in this step.
+    double dt() const {
+      c_.require_fluid_solved("dt");
+      return c_.dt_;
+    }
+    long long step_number() const { return c_.step_count_ + 1; }
+    int fluid_solves() const { return c_.fluid_solves_; }
+    // Throws SimulationError: "FsiCoupler: <what> at step N (t = T s)".
+    [[noreturn]] void fail(const std::string& what) const {
+      throw SimulationError("FsiCoupler: " + what + " at step " + std::to_string(c_.step_count_ + 1) +
+                                " (t = " + detail::format_number(c_.fluid_.time()) + " s)",
+                            c_.step_count_ + 1, c_.fluid_.time(), -1);
+    }
+
+   private:
+    friend class FsiCoupler;
+    explicit Step(FsiCoupler& coupler) : c_(coupler) {}
+    FsiCoupler& c_;
+  };
+  static_assert(check_coupling_scheme<Scheme, Step>());
 
   // Takes the fluid's particles (fluid, wall, dummy: the tank without the structure), its
   // parameters, the structure (with its boundary conditions already set) and the coupling
@@ -82,8 +132,7 @@ class FsiCoupler {
                fluid_parameters),
         search_(c_.interface_radius_ratio * fluid_parameters.l0 + 0.5 * fluid_parameters.l0),
         tank_search_(0.25 * fluid_parameters.l0),
-        structure_n0_(structure_n0(solid_)),
-        quasi_newton_(quasi_newton_model(scheme_)) {
+        structure_n0_(structure_n0(solid_)) {
     if (c_.covered_surface_as_dummy) {
       // The tank's fixed walls: the fluid set's own wall and dummy particles, which do not move.
       const auto& set = fluid_.particles();
@@ -95,17 +144,16 @@ class FsiCoupler {
     }
     if (c_.partial_wetting_correction)
       full_weight_ = full_wetting_weight<Weight, dimension, scalar_type>(fluid_.parameters().l0, re());
-    last_omega_ = initial_omega(scheme_);
     structure_acceleration_.assign(solid_.particles().size(), vec_type::Zero());
     load_.assign(solid_.particles().size(), vec_type::Zero());
     applied_force_.assign(solid_.particles().size(), vec_type::Zero());
     interface_pressure_.assign(solid_.particles().size(), 0);
   }
 
-  // One coupled step of the fluid's time step. Throws SimulationError (from either solver, or
-  // when a sub-iterated step does not converge) with the step and time.
+  // One coupled step of the fluid's time step, advanced by the scheme. Throws SimulationError
+  // (from either solver, or from the scheme, such as an iterated step that does not converge)
+  // with the step and time.
   void step() {
-    using clock = std::chrono::steady_clock;
     sync_walls();
     if (c_.interface_acceleration) {
       find_candidates();
@@ -113,28 +161,22 @@ class FsiCoupler {
                                       fluid_.particles(), candidates_, re(), fluid_.external_acceleration(),
                                       weight_sum_);
     }
-    if constexpr (Scheme::iterative) {
-      fluid_start_ = fluid_;
-      solid_start_ = solid_;
-    }
     velocity_start_ = solid_.particles().velocities();
-
-    auto t0 = clock::now();
-    fluid_.step();
-    auto t1 = clock::now();
-    fluid_seconds_ += std::chrono::duration<double>(t1 - t0).count();
-    const double dt = fluid_.last_dt();
-    // InterfaceQuasiNewton starts from the last step's converged load: where the fluid's added
-    // mass dwarfs the structure's, the explicit step's load (the wall moving on at its velocity at
-    // t^n) is off by more than the load itself, and a first iterate that far sends the next fluid
-    // solve into suction and the clamp to zero pressure, where the model learns nothing.
-    if (!uses_quasi_newton<Scheme> || step_count_ == 0) compute_loads(load_);
-    substeps_ = advance_structure(dt, load_);
-    iterations_ = 1;
-    if constexpr (Scheme::iterative) iterate(dt);
-
+    position_start_ = solid_.particles().positions();
+    if constexpr (Scheme::iterative) {
+      fluid_start_.take(fluid_);
+      solid_start_.take(solid_);
+    }
+    fluid_solves_ = 0;
+    structure_advances_ = 0;
+    Step handle(*this);
+    scheme_.advance(handle);
+    if (fluid_solves_ == 0 || structure_advances_ == 0)
+      detail::throw_invalid("FsiCoupler", std::string("the coupling scheme '") + Scheme::name + "' ended a step without " +
+                                              (fluid_solves_ == 0 ? "solving the fluid" : "advancing the structure"));
+    iterations_ = fluid_solves_;
     const auto& v = solid_.particles().velocities();
-    for (std::size_t s = 0; s < v.size(); ++s) structure_acceleration_[s] = (v[s] - velocity_start_[s]) / dt;
+    for (std::size_t s = 0; s < v.size(); ++s) structure_acceleration_[s] = (v[s] - velocity_start_[s]) / dt_;
     ++step_count_;
   }
 
@@ -147,7 +189,8 @@ class FsiCoupler {
 
   // Checkpoints (io/checkpoint.hpp): both solvers, the user's applied force, the last load (the
   // quasi-Newton step starts from it), the structure's acceleration (eq 10 reads it), the step
-  // count, the Aitken relaxation and the quasi-Newton columns kept across steps.
+  // count and the scheme's own state, if it has a checkpoint_state (the Aitken relaxation, the
+  // quasi-Newton columns kept across steps).
   static constexpr const char* checkpoint_kind = "FsiCoupler";
   std::size_t checkpoint_particle_count() const { return fluid_.particles().size(); }
   template <class Archive>
@@ -158,10 +201,9 @@ class FsiCoupler {
     a.array(load_);
     a.array(structure_acceleration_);
     a.value(step_count_);
-    a.value(last_omega_);
+    if constexpr (has_checkpoint_state<Scheme, Archive>::value) scheme_.checkpoint_state(a);
     a.value(substeps_);  // the last step's report (last_substeps, last_iterations), which outputs show
     a.value(iterations_);
-    quasi_newton_.checkpoint_state(a);
   }
   void checkpoint_restored() {
     fluid_.checkpoint_restored();
@@ -173,6 +215,7 @@ class FsiCoupler {
   Solid& solid() { return solid_; }
   const Solid& solid() const { return solid_; }
   const CouplingParameters& parameters() const { return c_; }
+  Scheme& scheme() { return scheme_; }
   const Scheme& scheme() const { return scheme_; }
 
   // Structure particle s is particle structure_offset() + s of the fluid's set.
@@ -196,8 +239,8 @@ class FsiCoupler {
     return sum;
   }
 
-  // Structure sub-steps and coupling iterations of the last step; wall-clock seconds spent in
-  // the fluid and in the structure so far.
+  // Structure sub-steps and coupling iterations (fluid solves) of the last step; wall-clock
+  // seconds spent in the fluid and in the structure so far.
   int last_substeps() const { return substeps_; }
   int last_iterations() const { return iterations_; }
   double fluid_seconds() const { return fluid_seconds_; }
@@ -277,11 +320,61 @@ class FsiCoupler {
                             interface_pressure_);
   }
 
-  int advance_structure(double dt, const VecArray<dimension, scalar_type>& load) {
+  template <class S, class Archive, class = void>
+  struct has_checkpoint_state : std::false_type {};
+  template <class S, class Archive>
+  struct has_checkpoint_state<S, Archive, std::void_t<decltype(std::declval<S&>().checkpoint_state(std::declval<Archive&>()))>>
+      : std::true_type {};
+
+  void require_fluid_solved(const char* call) const {
+    if (fluid_solves_ == 0)
+      detail::throw_invalid("FsiCoupler", std::string("the coupling scheme '") + Scheme::name + "' called Step::" + call +
+                                              " before the step's first solve_fluid");
+  }
+
+  [[noreturn]] void throw_repeat(const char* what) const {
+    detail::throw_invalid("FsiCoupler", std::string("the coupling scheme '") + Scheme::name + "' " + what +
+                                            " twice in one step but declares `iterative = false`, so the coupler "
+                                            "kept no state at t^n to return to");
+  }
+
+  void solve_fluid() {
+    if (fluid_solves_ > 0) {
+      if constexpr (!Scheme::iterative) throw_repeat("solved the fluid");
+      fluid_start_.restore(fluid_);
+      if (structure_advances_ > 0) {
+        const auto& x_end = solid_.particles().positions();
+        auto& wall_velocity = fluid_.particles().velocities();
+        for (std::size_t s = 0; s < x_end.size(); ++s)
+          wall_velocity[offset_ + s] = (x_end[s] - position_start_[s]) / dt_;
+      }
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    fluid_.step();
+    fluid_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    dt_ = fluid_.last_dt();
+    ++fluid_solves_;
+  }
+
+  void advance_structure_in_step(const vec_array& load) {
+    require_fluid_solved("advance_structure");
+    if (structure_advances_ > 0) {
+      if constexpr (!Scheme::iterative) throw_repeat("advanced the structure");
+      solid_start_.restore(solid_);
+    }
+    substeps_ = advance_structure(dt_, load);
+    ++structure_advances_;
+  }
+
+  int advance_structure(double dt, const vec_array& load) {
     const auto t0 = std::chrono::steady_clock::now();
     if (applied_force_.size() != load.size())
       detail::throw_invalid("FsiCoupler", "applied_force() must keep one entry per structure particle (" +
                                               std::to_string(load.size()) + ")");
+    if (load.size() != solid_.particles().size())
+      detail::throw_invalid("FsiCoupler", "the coupling scheme's load has " + std::to_string(load.size()) +
+                                              " entries for " + std::to_string(solid_.particles().size()) +
+                                              " structure particles");
     auto& f = solid_.external_force();
     f.resize(load.size());
     for (std::size_t s = 0; s < load.size(); ++s) {
@@ -293,80 +386,6 @@ class FsiCoupler {
     const int substeps = solid_.advance_by(dt);
     solid_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return substeps;
-  }
-
-  // SubIterated: fixed point on the interface load with Aitken relaxation; InterfaceQuasiNewton:
-  // the same iterations with the IQN-ILS update (coupling_schemes.hpp).
-  void iterate(double dt) {
-    if constexpr (uses_quasi_newton<Scheme>) quasi_newton_.begin_step();
-    // Start from the relaxation the last step converged with (bounded): the added-mass ratio
-    // that sets it changes slowly.
-    double omega = std::clamp(last_omega_, 0.05, 1.0);
-    bool have_previous = false;
-    for (int it = 1; it <= scheme_.max_iterations; ++it) {
-      fluid_ = *fluid_start_;
-      const auto& x_start = solid_start_->particles().positions();
-      const auto& x_end = solid_.particles().positions();
-      auto& fset = fluid_.particles();
-      for (std::size_t s = 0; s < x_end.size(); ++s) fset.velocities()[offset_ + s] = (x_end[s] - x_start[s]) / dt;
-      const auto t0 = std::chrono::steady_clock::now();
-      fluid_.step();
-      fluid_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      compute_loads(trial_);
-      residual_.resize(trial_.size());
-      double r2 = 0, f2 = 0;
-      for (std::size_t s = 0; s < trial_.size(); ++s) {
-        residual_[s] = trial_[s] - load_[s];
-        r2 += residual_[s].squaredNorm();
-        f2 += trial_[s].squaredNorm();
-      }
-      iterations_ = it + 1;
-      if (std::sqrt(r2) <= scheme_.tolerance * std::sqrt(f2)) {
-        last_omega_ = omega;
-        return;
-      }
-      if constexpr (uses_quasi_newton<Scheme>) {
-        quasi_newton_.next_load(load_, trial_, residual_, scheme_.initial_relaxation);
-      } else if (have_previous) {
-        double num = 0, den = 0;
-        for (std::size_t s = 0; s < residual_.size(); ++s) {
-          const vec_type d = residual_[s] - previous_residual_[s];
-          num += previous_residual_[s].dot(d);
-          den += d.squaredNorm();
-        }
-        if (den > 0) omega = -omega * num / den;
-      }
-      if constexpr (!uses_quasi_newton<Scheme>)
-        for (std::size_t s = 0; s < load_.size(); ++s) load_[s] += omega * residual_[s];
-      previous_residual_ = residual_;
-      have_previous = true;
-      solid_ = *solid_start_;
-      substeps_ = advance_structure(dt, load_);
-    }
-    throw SimulationError("FsiCoupler: the sub-iterated coupling did not converge in " +
-                              std::to_string(scheme_.max_iterations) + " iterations at step " +
-                              std::to_string(step_count_ + 1) + " (t = " + detail::format_number(fluid_.time()) + " s)",
-                          step_count_ + 1, fluid_.time(), -1);
-  }
-
-  template <class S, class = void>
-  struct quasi_newton_trait : std::false_type {};
-  template <class S>
-  struct quasi_newton_trait<S, std::void_t<decltype(S::quasi_newton)>> : std::bool_constant<S::quasi_newton> {};
-  template <class S>
-  static constexpr bool uses_quasi_newton = quasi_newton_trait<S>::value;
-  using QuasiNewtonModel = InterfaceQuasiNewtonModel<dimension, scalar_type>;
-
-  template <class S>
-  static QuasiNewtonModel quasi_newton_model(const S& s) {
-    if constexpr (uses_quasi_newton<S>) return QuasiNewtonModel(s.reuse_steps, s.max_columns);
-    return QuasiNewtonModel();
-  }
-
-  template <class S>
-  static double initial_omega(const S& s) {
-    if constexpr (S::iterative) return s.initial_relaxation;
-    return 1.0;
   }
 
   CouplingParameters c_;
@@ -382,17 +401,17 @@ class FsiCoupler {
   BasicNeighborList<scalar_type> candidates_, covering_;
   VecArray<dimension, scalar_type> sites_;
   VecArray<dimension, scalar_type> applied_force_;  // the user's load on the structure
-  VecArray<dimension, scalar_type> load_, trial_, residual_, previous_residual_;
-  VecArray<dimension, scalar_type> structure_acceleration_, velocity_start_;
+  VecArray<dimension, scalar_type> load_;
+  std::deque<vec_array> workspace_;  // Step::workspace; a deque keeps earlier arrays in place as it grows
+  VecArray<dimension, scalar_type> structure_acceleration_, velocity_start_, position_start_;
   std::vector<scalar_type> interface_pressure_, weight_sum_;
-  std::optional<Fluid> fluid_start_;  // SubIterated: the state at t^n
-  std::optional<Solid> solid_start_;
+  detail::StateSnapshot fluid_start_, solid_start_;  // iterative schemes: the state at t^n
   long long step_count_ = 0;
   int substeps_ = 0, iterations_ = 0;
+  int fluid_solves_ = 0, structure_advances_ = 0;  // within the current step
+  double dt_ = 0;
   double fluid_seconds_ = 0, solid_seconds_ = 0;
   scalar_type full_weight_ = 0;
-  double last_omega_ = 1.0;
-  QuasiNewtonModel quasi_newton_;  // InterfaceQuasiNewton: the least-squares model
 };
 
 }  // namespace MPSFSI_ABI

@@ -29,11 +29,9 @@ inline namespace MPSFSI_ABI {
 // iterations of the next one Newton-like. Nearly dependent columns get no weight: the column-
 // pivoted QR's rank threshold (1e-10 relative) leaves them out of the solve. At most `max_columns`
 // are kept, the oldest dropped first.
-template <int Dim, class Scalar = double>
+template <class Scalar = double>
 class InterfaceQuasiNewtonModel {
  public:
-  using vec_array = VecArray<Dim, Scalar>;
-
   InterfaceQuasiNewtonModel(int reuse_steps = 0, int max_columns = 64)
       : reuse_steps_(std::max(0, reuse_steps)), max_columns_(std::max(1, max_columns)) {}
 
@@ -46,7 +44,9 @@ class InterfaceQuasiNewtonModel {
   }
 
   // Replaces `load` (F_k) by F_{k+1}, given the fluid's answer `trial` (F~_k) and `residual` (r_k).
-  void next_load(vec_array& load, const vec_array& trial, const vec_array& residual, Scalar relaxation) {
+  template <int Dim>
+  void next_load(VecArray<Dim, Scalar>& load, const VecArray<Dim, Scalar>& trial, const VecArray<Dim, Scalar>& residual,
+                 Scalar relaxation) {
     const auto n = static_cast<Eigen::Index>(Dim * load.size());
     const Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> r(residual.data()->data(), n);
     const Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>> ft(trial.data()->data(), n);

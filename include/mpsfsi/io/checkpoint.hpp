@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
+#include "mpsfsi/core/detail/state_archive.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/io/detail/output_file.hpp"
@@ -44,7 +45,8 @@
 namespace mpsfsi {
 inline namespace MPSFSI_ABI {
 
-inline constexpr std::uint32_t checkpoint_format_version = 1;
+inline constexpr std::uint32_t checkpoint_format_version = 2;
+inline constexpr std::uint32_t oldest_readable_checkpoint_format = 2;
 
 namespace detail {
 
@@ -76,96 +78,6 @@ inline std::string readable_type_name(const char* mangled) {
 #endif
   return mangled;
 }
-
-// Eigen's fixed-size vectors and matrices are contiguous arrays of their scalars.
-template <class T, class = void>
-struct is_fixed_eigen : std::false_type {};
-template <class T>
-struct is_fixed_eigen<T, std::void_t<decltype(T::SizeAtCompileTime), typename T::Scalar>>
-    : std::bool_constant<(T::SizeAtCompileTime > 0) &&
-                         sizeof(T) == static_cast<std::size_t>(T::SizeAtCompileTime) * sizeof(typename T::Scalar)> {};
-
-template <class T>
-inline constexpr bool is_raw_copyable = std::is_arithmetic_v<T> || std::is_enum_v<T> || is_fixed_eigen<T>::value;
-
-// Serialises checkpoint_state() into a byte buffer.
-class CheckpointWriter {
- public:
-  template <class T>
-  void value(const T& x) {
-    static_assert(is_raw_copyable<T>, "mpsfsi checkpoint: value() takes arithmetic, enum or fixed-size Eigen types");
-    append(&x, sizeof(T));
-  }
-  template <class T, class A>
-  void array(const std::vector<T, A>& v) {
-    static_assert(is_raw_copyable<T>, "mpsfsi checkpoint: array() takes vectors of arithmetic, enum or fixed-size Eigen types");
-    value(static_cast<std::uint64_t>(v.size()));
-    append(v.data(), v.size() * sizeof(T));
-  }
-  void label(const std::string& s) {
-    value(static_cast<std::uint64_t>(s.size()));
-    append(s.data(), s.size());
-  }
-  const std::vector<unsigned char>& bytes() const { return bytes_; }
-
- private:
-  void append(const void* p, std::size_t n) {
-    const auto* c = static_cast<const unsigned char*>(p);
-    bytes_.insert(bytes_.end(), c, c + n);
-  }
-  std::vector<unsigned char> bytes_;
-};
-
-// Reads checkpoint_state() back from a byte buffer; every read is bounds-checked.
-class CheckpointReader {
- public:
-  CheckpointReader(const unsigned char* data, std::size_t size, std::string path)
-      : data_(data), size_(size), path_(std::move(path)) {}
-
-  template <class T>
-  void value(T& x) {
-    static_assert(is_raw_copyable<T>, "mpsfsi checkpoint: value() takes arithmetic, enum or fixed-size Eigen types");
-    take(&x, sizeof(T));
-  }
-  template <class T, class A>
-  void array(std::vector<T, A>& v) {
-    static_assert(is_raw_copyable<T>, "mpsfsi checkpoint: array() takes vectors of arithmetic, enum or fixed-size Eigen types");
-    std::uint64_t n = 0;
-    value(n);
-    if (n > (size_ - at_) / (sizeof(T) ? sizeof(T) : 1)) corrupt("an array runs past the end of the data");
-    v.resize(static_cast<std::size_t>(n));
-    take(v.data(), v.size() * sizeof(T));
-  }
-  // Reads a label and checks it against the one this solver has.
-  void label(const std::string& expected) {
-    const std::string got = text();
-    if (got != expected)
-      throw_invalid("CheckpointReader", "'" + path_ + "' has '" + got + "' where this solver has '" + expected +
-                                            "' (written by a solver with other fields or settings)");
-  }
-  std::string text() {
-    std::uint64_t n = 0;
-    value(n);
-    if (n > size_ - at_) corrupt("a name runs past the end of the data");
-    std::string s(reinterpret_cast<const char*>(data_ + at_), static_cast<std::size_t>(n));
-    at_ += static_cast<std::size_t>(n);
-    return s;
-  }
-  bool at_end() const { return at_ == size_; }
-  [[noreturn]] void corrupt(const std::string& what) const {
-    throw_invalid("CheckpointReader", "'" + path_ + "' is corrupt: " + what);
-  }
-
- private:
-  void take(void* p, std::size_t n) {
-    if (n > size_ - at_) corrupt("it ends early");
-    if (n) std::memcpy(p, data_ + at_, n);
-    at_ += n;
-  }
-  const unsigned char* data_;
-  std::size_t size_, at_ = 0;
-  std::string path_;
-};
 
 inline constexpr char checkpoint_magic[8] = {'M', 'P', 'S', 'F', 'S', 'I', 'C', 'P'};
 inline constexpr std::uint32_t checkpoint_byte_order = 0x01020304u;
@@ -243,6 +155,11 @@ void read_checkpoint(const std::string& path, Solver& solver, Extra&... extra) {
                                                  "; this build reads versions up to " +
                                                  std::to_string(checkpoint_format_version));
   if (version == 0) file.corrupt("format version 0");
+  if (version < oldest_readable_checkpoint_format)
+    detail::throw_invalid("read_checkpoint", "'" + path + "' has format version " + std::to_string(version) +
+                                                 ", older than this build reads (" +
+                                                 std::to_string(oldest_readable_checkpoint_format) + " to " +
+                                                 std::to_string(checkpoint_format_version) + ")");
   std::uint64_t header_size = 0;
   file.value(header_size);
   const std::size_t header_at = sizeof magic + sizeof version + sizeof header_size;
