@@ -17,6 +17,7 @@
 
 #include <mpsfsi/fluid/fluid_solver.hpp>
 #include <mpsfsi/fracture/failure_criteria.hpp>
+#include <mpsfsi/fracture/fracture_process.hpp>
 #include <mpsfsi/fsi/fsi_coupler.hpp>
 #include <mpsfsi/io/checkpoint.hpp>
 #include <mpsfsi/io/csv_writer.hpp>

@@ -16,14 +16,15 @@
 #include <string>
 #include <vector>
 
+#include <mpsfsi/fracture/fracture_process.hpp>
 #include <mpsfsi/io/checkpoint.hpp>
 #include <mpsfsi/io/csv_writer.hpp>
 #include <mpsfsi/io/progress.hpp>
 #include <mpsfsi/io/pvd_writer.hpp>
-#include <mpsfsi/fracture/fragments.hpp>
 #include <mpsfsi/io/vtu_writer.hpp>
 #include <mpsfsi/scenes/solid_block.hpp>
 #include <mpsfsi/solid/elastic_solver.hpp>
+#include <mpsfsi/solid/fragments.hpp>
 
 #include "common/run_checkpoints.hpp"
 

@@ -3,8 +3,9 @@
 
 #include <algorithm>
 
-#include "mpsfsi/fracture/crack_plane.hpp"
+#include "mpsfsi/fracture/fracture_process.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
+#include "mpsfsi/solid/crack_plane.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 #include "support/ice.hpp"
 

@@ -5,9 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "mpsfsi/fracture/fragments.hpp"
+#include "mpsfsi/fracture/fracture_process.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
+#include "mpsfsi/solid/fragments.hpp"
 #include "support/ice.hpp"
 
 using namespace mpsfsi;

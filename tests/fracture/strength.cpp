@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mpsfsi/core/error.hpp"
+#include "mpsfsi/fracture/fracture_process.hpp"
 #include "mpsfsi/fracture/strength.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mpsfsi/fluid/fluid_solver.hpp"
+#include "mpsfsi/fracture/fracture_process.hpp"
 #include "mpsfsi/fsi/fsi_coupler.hpp"
 #include "mpsfsi/io/vtu_writer.hpp"
 #include "mpsfsi/scenes/dam_break.hpp"

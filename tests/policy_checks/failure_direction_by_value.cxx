@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Must not compile: a failure model that takes the crack normal by value would compile and leave
 // the solver's normal unset.
+#include "mpsfsi/fracture/fracture_process.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 
 struct DirectionByValue {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Must not compile: a failure model without principal().
+#include "mpsfsi/fracture/fracture_process.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 
 struct EnabledOnly {

@@ -8,6 +8,8 @@
 
 #include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/types.hpp"
+#include "mpsfsi/solid/failure_slot.hpp"
+#include "mpsfsi/solid/principal_stress.hpp"
 
 namespace mpsfsi {
 inline namespace MPSFSI_ABI {
@@ -27,46 +29,16 @@ inline namespace MPSFSI_ABI {
 // SolidParameters::tensile_strength. The criteria below carry no parameters and cost what a
 // static function does.
 
-// Null object: nothing ever fails (the solver skips the check entirely).
-struct NoFailure {
-  static constexpr bool enabled = false;
-  template <int Dim, class Scalar>
-  static Scalar principal(const Mat<Dim, Scalar>&, Vec<Dim, Scalar>& direction) {
-    direction = Vec<Dim, Scalar>::UnitX();
-    return -std::numeric_limits<Scalar>::infinity();
-  }
-};
+// NoFailure, the null object (nothing ever fails), is solid/failure_slot.hpp's: the default of
+// every solid, with or without this folder.
 
-// sigma_1 as the largest eigenvalue of the stress tensor and its eigenvector (the paper's
-// "first principal stress"): closed form in 2D, Eigen's self-adjoint solver in 3D.
-// A principal direction has no sign, but the crack-plane rule (crack_plane.hpp) puts the cut on
-// the normal's - side, so the sign chooses which neighbour column a crack opens towards. Both
-// dimensions return the same convention: the first non-zero component is positive (n_x >= 0;
-// the 2D closed form gives it with theta in (-pi/2, pi/2]; Eigen's sign is arbitrary, so the 3D
-// vector is flipped to it).
+// The maximum principal stress criterion: sigma_1 and its direction (max_principal_stress,
+// solid/principal_stress.hpp, which also fills ElasticSolver's `max_principal_stress` output).
 struct MaxPrincipalStress {
   static constexpr bool enabled = true;
   template <int Dim, class Scalar>
   static Scalar principal(const Mat<Dim, Scalar>& sigma, Vec<Dim, Scalar>& direction) {
-    if constexpr (Dim == 2) {
-      const Scalar mean = Scalar(0.5) * (sigma(0, 0) + sigma(1, 1));
-      const Scalar half_diff = Scalar(0.5) * (sigma(0, 0) - sigma(1, 1));
-      const Scalar shear = Scalar(0.5) * (sigma(0, 1) + sigma(1, 0));
-      const Scalar radius = std::hypot(half_diff, shear);  // Mohr's circle
-      // Direction angle theta with tan(2 theta) = 2 sigma_xy / (sigma_xx - sigma_yy).
-      const Scalar theta = radius > 0 ? Scalar(0.5) * std::atan2(shear, half_diff) : Scalar(0);
-      direction = Vec<2, Scalar>(std::cos(theta), std::sin(theta));
-      return mean + radius;
-    } else {
-      Eigen::SelfAdjointEigenSolver<Mat<Dim, Scalar>> eig(Scalar(0.5) * (sigma + sigma.transpose()));
-      direction = eig.eigenvectors().col(Dim - 1);  // eigenvalues ascend
-      for (int k = 0; k < Dim; ++k) {
-        if (direction[k] == Scalar(0)) continue;
-        if (direction[k] < Scalar(0)) direction = -direction;
-        break;
-      }
-      return eig.eigenvalues()[Dim - 1];
-    }
+    return max_principal_stress<Dim, Scalar>(sigma, direction);
   }
 };
 

@@ -13,15 +13,10 @@ namespace mpsfsi {
 inline namespace MPSFSI_ABI {
 
 // Compile-time check of ElasticSolver's failure-model slot (failure_criteria.hpp states the
-// contract). ElasticSolver static_asserts it, so a model written wrong fails with a message
+// contract). FractureProcess static_asserts it, so a model written wrong fails with a message
 // naming the member rather than with an error deep in the solver, or, for a direction taken by
 // value, instead of compiling and leaving the crack normal unset.
 namespace detail {
-
-template <class F, class = void>
-struct has_failure_enabled : std::false_type {};
-template <class F>
-struct has_failure_enabled<F, std::void_t<decltype(bool(F::enabled))>> : std::true_type {};
 
 // principal(sigma, direction) with `direction` an lvalue (Direction = Vec&) or an rvalue
 // (Direction = Vec): a model that accepts the rvalue takes the direction by value or by const

@@ -13,26 +13,24 @@
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
-#include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/detail/format.hpp"
-#include "mpsfsi/core/detail/spacing.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/particle_set.hpp"
-#include "mpsfsi/fracture/crack_plane.hpp"
-#include "mpsfsi/fracture/failure_criteria.hpp"
-#include "mpsfsi/fracture/failure_stress.hpp"
-#include "mpsfsi/fracture/fragments.hpp"
-#include "mpsfsi/fracture/policy_checks.hpp"
-#include "mpsfsi/fracture/strength.hpp"
 #include "mpsfsi/kernels/lattice_constants.hpp"
 #include "mpsfsi/kernels/weight.hpp"
+#include "mpsfsi/solid/bond_viscosity.hpp"
 #include "mpsfsi/solid/bonds.hpp"
 #include "mpsfsi/solid/contact.hpp"
 #include "mpsfsi/solid/corrected_total_lagrangian.hpp"
+#include "mpsfsi/solid/crack_plane.hpp"
 #include "mpsfsi/solid/deformation.hpp"
+#include "mpsfsi/solid/detail/spacing_check.hpp"
+#include "mpsfsi/solid/failure_slot.hpp"
+#include "mpsfsi/solid/fragments.hpp"
 #include "mpsfsi/solid/hwang_model.hpp"
 #include "mpsfsi/solid/policy_checks.hpp"
+#include "mpsfsi/solid/principal_stress.hpp"
 #include "mpsfsi/solid/solid_parameters.hpp"
 
 namespace mpsfsi {
@@ -48,11 +46,7 @@ struct SolidDefaults {
   using failure = NoFailure;
 };
 
-// Brittle solid: the default models with the maximum principal stress criterion (eq 27).
-template <int Dim>
-struct BrittleSolidPolicies : SolidDefaults<Dim> {
-  using failure = MaxPrincipalStress;
-};
+// BrittleSolidPolicies (failure = MaxPrincipalStress) is in fracture/fracture_process.hpp.
 
 // The paper's own structure model (eqs 16-17 and rotation, eq 8) in place of the default.
 template <int Dim>
@@ -69,15 +63,6 @@ template <class Model>
 struct has_deformation_fit<Model, std::void_t<decltype(std::declval<const Model&>().fit())>> : std::true_type {};
 }  // namespace detail
 
-// One particle failing (eq 27): when, which particle, sigma_1 and the crack-plane normal.
-template <int Dim>
-struct FailureEvent {
-  double time = 0;
-  std::size_t particle = 0;
-  double sigma1 = 0;
-  Vec<Dim, double> normal = Vec<Dim, double>::Zero();
-};
-
 // How a particle's motion is constrained.
 enum class Constraint : std::int32_t {
   free = 0,
@@ -91,14 +76,23 @@ enum class Constraint : std::int32_t {
 //   m a = f_internal(x) + f_contact(x) + f_external + m g   (eq 16 with f_FtoS = f_external / m).
 // The stress model (default: corrected total-Lagrangian SVK; PaperSolidPolicies: the paper's
 // eqs 16-17 with rotation) and the contact model are policies. Particles with different body ids
-// never share bonds and interact through contact only (supports, indenters, fragments).
+// never share bonds and interact through contact only (supports, indenters, fragments). A failure
+// model with `enabled = true` breaks bonds after each step through FractureProcess
+// (fracture/fracture_process.hpp, which the program then includes).
 template <int Dim, class Policies = SolidDefaults<Dim>>
 class ElasticSolver {
   using Weight = typename Policies::weight;
   static_assert(check_weight<Weight>());
   static_assert(check_stress_model<typename Policies::stress_model, Dim>());
   static_assert(check_contact<typename Policies::contact, Dim>());
-  static_assert(check_failure_model<typename Policies::failure, Dim>());
+  static_assert(detail::has_failure_enabled<typename Policies::failure>::value,
+                "failure model lacks `static constexpr bool enabled`");
+  static constexpr bool can_fail = Policies::failure::enabled;
+  using fracture_type = std::conditional_t<can_fail, FractureProcess<Dim, typename Policies::failure>,
+                                           NoFractureProcess<Dim, typename Policies::failure>>;
+  static_assert(!can_fail || detail::is_complete<fracture_type>::value,
+                "ElasticSolver: a failure model with `enabled = true` needs FractureProcess: include "
+                "\"mpsfsi/fracture/fracture_process.hpp\" (or \"mpsfsi/mpsfsi.hpp\")");
 
  public:
   using vec_type = Vec<Dim, double>;
@@ -119,7 +113,7 @@ class ElasticSolver {
   // disagrees with l0 (see check_spacing) or missing/invalid parameters.
   ElasticSolver(ParticleSet<Dim> particles, parameters_type params, std::vector<std::int32_t> body = {},
                 failure_type failure = failure_type{})
-      : p_(std::move(params)), set_(std::move(particles)), failure_(std::move(failure)) {
+      : p_(std::move(params)), set_(std::move(particles)), fracture_(std::move(failure)) {
     p_.validate();
     if (set_.empty()) detail::throw_invalid("ElasticSolver", "the particle set is empty");
     set_.validate();
@@ -159,7 +153,7 @@ class ElasticSolver {
     context_.n0 = lattice.n0;
     context_.lap_lambda = lattice.lambda;
     mass_ = p_.density * context_.volume;
-    if constexpr (failure_type::enabled) assign_strengths();
+    if constexpr (can_fail) fracture_.initialize(set_, p_, context_.volume);
     model_.initialize(bonds_, context_);
     contact_.initialize(n, p_.contact_distance(), p_.contact_stiffness(),
                         2 * p_.contact_damping_ratio * std::sqrt(p_.contact_stiffness() * 0.5 * mass_));
@@ -258,7 +252,7 @@ class ElasticSolver {
     last_dt_ = dt;
     ++step_count_;
     stresses_current_ = false;
-    if constexpr (failure_type::enabled) {
+    if constexpr (can_fail) {
       if (apply_failure()) compute_forces(set_.positions(), set_.velocities(), force_);
     }
   }
@@ -337,7 +331,7 @@ class ElasticSolver {
       u[i] = set_.positions()[i] - reference_[i];
       damage[i] = bonds_.damage(i);
       vec_type direction;
-      principal[i] = MaxPrincipalStress::principal<Dim, double>(sigma[i], direction);
+      principal[i] = max_principal_stress<Dim, double>(sigma[i], direction);
     }
     set_.field(fragment_) = find_fragments(bonds_).label;
     return set_;
@@ -378,16 +372,16 @@ class ElasticSolver {
   // at sigma_1 >= sigma_f that cut at least one bond; it counts each step it does), and the time
   // of the first failure (negative if none yet).
   std::size_t cut_bonds() const { return bonds_.num_cut(); }
-  std::size_t failure_events() const { return failure_log_.size(); }
-  double first_failure_time() const { return first_failure_time_; }
+  std::size_t failure_events() const { return fracture_.log().size(); }
+  double first_failure_time() const { return fracture_.first_failure_time(); }
   // Every failure in order: the crack path (reference_positions()[event.particle]) and history.
-  const std::vector<FailureEvent<Dim>>& failure_log() const { return failure_log_; }
+  const std::vector<FailureEvent<Dim>>& failure_log() const { return fracture_.log(); }
   // The failure model object; each particle's strength and the value the criterion compared
   // with it at the last step's check (the output fields `strength` and `failure_stress`; Pa;
   // empty without a failure model).
-  const failure_type& failure_model() const { return failure_; }
-  const std::vector<double>& strengths() const { return failure_field(strength_); }
-  const std::vector<double>& criterion_stresses() const { return failure_field(failure_stress_); }
+  const failure_type& failure_model() const { return fracture_.model(); }
+  const std::vector<double>& strengths() const { return fracture_.strengths(set_); }
+  const std::vector<double>& criterion_stresses() const { return fracture_.criterion_stresses(set_); }
 
   // Directed bonds evaluated per force evaluation (the benchmark's unit of work).
   std::size_t bond_evaluations_per_step() const { return bonds_.num_bonds(); }
@@ -406,25 +400,14 @@ class ElasticSolver {
     bonds_.checkpoint_state(a);
     model_.checkpoint_state(a);
     contact_.checkpoint_state(a);
-    failure_readout_.checkpoint_state(a);
     a.array(constraint_);
     a.array(prescribed_velocity_);
     a.array(external_);
     a.array(force_);
-    a.array(carried_external_);
     a.value(time_);
     a.value(last_dt_);
     a.value(step_count_);
-    a.value(first_failure_time_);
-    std::uint64_t failures = failure_log_.size();
-    a.value(failures);  // overwritten when reading
-    failure_log_.resize(static_cast<std::size_t>(failures));
-    for (auto& e : failure_log_) {
-      a.value(e.time);
-      a.value(e.particle);
-      a.value(e.sigma1);
-      a.value(e.normal);
-    }
+    fracture_.checkpoint_state(a);
   }
   void checkpoint_restored() {
     const std::size_t n = set_.size();
@@ -469,119 +452,29 @@ class ElasticSolver {
   void compute_forces(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force) {
     model_.internal_forces(x, bonds_, force);
     contact_.add_forces(x, v, bonds_, force);
-    if (p_.bond_viscosity > 0) add_bond_viscosity(x, v, force);
+    if (p_.bond_viscosity > 0)
+      add_bond_viscosity(bonds_, x, v, p_.bond_viscosity * p_.density * p_.p_wave_speed() * context_.volume * Dim / context_.n0,
+                         force);
   }
 
-  void add_bond_viscosity(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force) const {
-    const double coeff = p_.bond_viscosity * p_.density * p_.p_wave_speed() * context_.volume * Dim / context_.n0;
-    const auto& offsets = bonds_.offsets();
-    const auto& nb = bonds_.neighbors();
-    const auto& r0 = bonds_.reference_vectors();
-    const auto& beta = bonds_.betas();
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      vec_type sum = vec_type::Zero();
-      for (Offset b = offsets[i]; b < offsets[i + 1]; ++b) {
-        const auto k = static_cast<std::size_t>(b);
-        const auto j = static_cast<std::size_t>(nb[k]);
-        const vec_type r = x[j] - x[i];
-        const double len = r.norm();
-        if (beta[k] == 0 || len == 0) continue;
-        const vec_type e = r / len;
-        sum += (beta[k] * r0[k].norm() * (v[j] - v[i]).dot(e)) * e;  // w0 / |r0| = beta |r0|
-      }
-      force[i] += coeff * sum;
-    }
-  }
-
-  // The stress eq 27 reads (failure_stress.hpp): averaged, and on traction-free outer faces
-  // read at the surface when the stress model has a second-order fit.
-  const MatArray<Dim, double>& failure_stresses() {
+  // Eq 27 at every particle, and the cuts of the failing ones (FractureProcess). The stress is
+  // read on traction-free outer faces at the surface when the stress model has a second-order
+  // fit (failure_stress.hpp). Returns whether any bond was cut (the forces are then recomputed).
+  bool apply_failure() {
     const DeformationFit<Dim, double>* fit = nullptr;
     if constexpr (detail::has_deformation_fit<stress_model_type>::value)
       if (p_.failure_stress_at_surface) fit = &model_.fit();
     const auto& x = set_.positions();
-    // An external force marks its particle as loaded from then on (failure_stress.hpp: why).
-    if (fit) {
-      carried_external_.resize(set_.size(), 0);
-      MPSFSI_OMP(parallel for schedule(static))
-      for (std::int64_t i = 0; i < static_cast<std::int64_t>(set_.size()); ++i)
-        if (!external_[static_cast<std::size_t>(i)].isZero(0.0)) carried_external_[static_cast<std::size_t>(i)] = 1;
-    }
-    const auto loaded = [&](std::size_t i) { return contact_.touching(x, i) || carried_external_[i] != 0; };
-    return failure_readout_.read(stresses(), x, reference_, bonds_, fit, loaded,
-                                 {p_.l0, context_.n0, Weight::value(p_.l0, p_.re()), context_.lame, p_.average_failure_stress});
-  }
-
-  // Eq 27 at every particle; each failing particle, strongest first, cuts the bonds across its
-  // crack plane. Returns whether any bond was cut (the forces are then recomputed).
-  bool apply_failure() {
-    const auto& sigma = failure_stresses();
-    const std::size_t n = set_.size();
-    failing_.clear();
-    const auto& strength = set_.field(strength_);
-    auto& read = set_.field(failure_stress_);
-    MPSFSI_OMP(parallel)
-    {
-      std::vector<Failing> mine;
-      MPSFSI_OMP(for schedule(static) nowait)
-      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
-        const auto i = static_cast<std::size_t>(ii);
-        read[i] = 0;
-        if (constraint_[i] == Constraint::prescribed || bonds_.intact_count(i) == 0) continue;
-        vec_type direction;
-        const double s1 = failure_.template principal<Dim, double>(sigma[i], direction);
-        read[i] = s1;
-        if (s1 >= strength[i]) mine.push_back({s1, i, direction});
-      }
-      MPSFSI_OMP(critical)
-      failing_.insert(failing_.end(), mine.begin(), mine.end());
-    }
-    if (failing_.empty()) return false;
-    std::sort(failing_.begin(), failing_.end(), [](const Failing& a, const Failing& b) {
-      return a.sigma1 > b.sigma1 || (a.sigma1 == b.sigma1 && a.particle < b.particle);
-    });
     touched_.clear();
-    std::size_t cut = 0;
-    for (const auto& f : failing_) {
-      const std::size_t cut_here = cut_bonds_across_plane(bonds_, set_.positions(), f.particle, f.normal,
-                                                          p_.crack_half_width(), p_.re(), touched_, scratch_);
-      if (cut_here == 0) continue;  // no intact bond across its plane: nothing breaks, nothing logged
-      cut += cut_here;
-      failure_log_.push_back({time_, f.particle, f.sigma1, f.normal});
-      if (first_failure_time_ < 0) first_failure_time_ = time_;
-    }
-    if (cut == 0) return false;
-    bonds_changed();
-    return true;
-  }
-
-  const std::vector<double>& failure_field(FieldHandle<double> h) const {
-    static const std::vector<double> none;
-    if constexpr (failure_type::enabled) return set_.field(h);
-    return none;
-  }
-
-  // Each particle's strength (the `strength` field): sigma_f, or what the failure model assigns.
-  void assign_strengths() {
-    strength_ = set_.template add_field<double>("strength");
-    failure_stress_ = set_.template add_field<double>("failure_stress");
-    auto& strength = set_.field(strength_);
-    if constexpr (detail::has_assign_strengths<failure_type>::value) {
-      const StrengthSetup setup{p_.tensile_strength, p_.youngs_modulus, p_.poisson_ratio, p_.l0, context_.volume,
-                                &set_.ids()};
-      failure_.assign_strengths(setup, strength);
-      if (strength.size() != set_.size())
-        detail::throw_invalid("ElasticSolver", "the failure model assigned " + std::to_string(strength.size()) +
-                                                   " strengths for " + std::to_string(set_.size()) + " particles");
-      for (std::size_t i = 0; i < strength.size(); ++i)
-        if (!(strength[i] > 0) || std::isnan(strength[i]))
-          detail::throw_invalid("ElasticSolver", "the failure model assigned particle " + std::to_string(i) +
-                                                     " a strength that is not positive");
-    } else {
-      std::fill(strength.begin(), strength.end(), p_.tensile_strength);
-    }
+    const typename fracture_type::State state{
+        set_, bonds_, stresses(), reference_, external_, fit,
+        {p_.l0, context_.n0, Weight::value(p_.l0, p_.re()), context_.lame, p_.average_failure_stress},
+        p_.crack_half_width(), p_.re(), time_};
+    const bool cut = fracture_.apply(
+        state, [this](std::size_t i) { return constraint_[i] == Constraint::prescribed; },
+        [&](std::size_t i) { return contact_.touching(x, i); }, touched_, scratch_);
+    if (cut) bonds_changed();
+    return cut;
   }
 
   void bonds_changed() {
@@ -640,36 +533,8 @@ class ElasticSolver {
   }
 
   // Overlapping particles (closer than l0/2) and a spacing that disagrees with l0
-  // (detail::check_median_spacing) are errors.
-  void check_spacing() const {
-    const std::size_t n = set_.size();
-    if (n < 2) return;
-    const double radius = 1.5 * p_.l0;
-    CellListSearch<Dim, double> search(radius);
-    search.build(set_.positions());
-    BasicNeighborList<double> close;
-    search.self_query(set_.positions(), close, QueryOptions{true});
-    std::vector<double> nearest;
-    nearest.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (close.begin(i) == close.end(i)) continue;
-      double d = radius;
-      Index j = -1;
-      for (Offset k = close.begin(i); k < close.end(i); ++k) {
-        const double dk = close.distances[static_cast<std::size_t>(k)];
-        if (dk < d) d = dk, j = close.indices[static_cast<std::size_t>(k)];
-      }
-      if (d < 0.5 * p_.l0 * (1 - 1e-9))
-        detail::throw_invalid("ElasticSolver", "particles " + std::to_string(i) + " and " + std::to_string(j) +
-                                                   " overlap (closer than l0/2)");
-      nearest.push_back(d);
-    }
-    if (nearest.empty())
-      detail::throw_invalid("ElasticSolver", "no two particles are within 1.5 l0 of each other (l0 = " +
-                                                 detail::format_number(p_.l0) +
-                                                 " m): the particles are spaced more widely than l0");
-    detail::check_median_spacing(nearest, p_.l0, "ElasticSolver");
-  }
+  // (detail::check_solid_spacing) are errors.
+  void check_spacing() const { detail::check_solid_spacing(set_.positions(), p_.l0); }
 
   parameters_type p_;
   ParticleSet<Dim> set_;
@@ -678,13 +543,12 @@ class ElasticSolver {
   SolidModelContext<Dim, double> context_;
   stress_model_type model_;
   contact_type contact_;
-  failure_type failure_;
+  fracture_type fracture_;
   double mass_ = 0;
   FieldHandle<std::int32_t> body_, constraint_field_, fragment_;
   FieldHandle<vec_type> displacement_;
   FieldHandle<mat_type> stress_field_;
   FieldHandle<double> damage_, principal_;
-  FieldHandle<double> strength_, failure_stress_;  // with a failure model only
   std::vector<Constraint> constraint_;
   VecArray<Dim, double> prescribed_velocity_;  // the velocity, or the unit normal of a support
   VecArray<Dim, double> external_, force_;
@@ -695,17 +559,7 @@ class ElasticSolver {
   double time_ = 0, last_dt_ = 0;
   long long step_count_ = 0;
   bool stresses_current_ = false;
-  struct Failing {
-    double sigma1;
-    std::size_t particle;
-    vec_type normal;
-  };
-  std::vector<Failing> failing_;
-  std::vector<std::uint8_t> carried_external_;  // has carried an external force (surface read-out)
-  FailureStressReadout<Dim> failure_readout_;
-  std::vector<std::size_t> touched_, scratch_;
-  std::vector<FailureEvent<Dim>> failure_log_;
-  double first_failure_time_ = -1;
+  std::vector<std::size_t> touched_, scratch_;  // particles whose bonds a cut changed
 };
 
 }  // namespace MPSFSI_ABI

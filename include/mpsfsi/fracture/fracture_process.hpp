@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mpsfsi/core/abi.hpp"
+#include "mpsfsi/core/error.hpp"
+#include "mpsfsi/core/parallel.hpp"
+#include "mpsfsi/core/particle_set.hpp"
+#include "mpsfsi/core/types.hpp"
+#include "mpsfsi/fracture/failure_criteria.hpp"
+#include "mpsfsi/fracture/failure_stress.hpp"
+#include "mpsfsi/fracture/policy_checks.hpp"
+#include "mpsfsi/fracture/strength.hpp"
+#include "mpsfsi/solid/bonds.hpp"
+#include "mpsfsi/solid/crack_plane.hpp"
+#include "mpsfsi/solid/deformation.hpp"
+#include "mpsfsi/solid/elastic_solver.hpp"
+#include "mpsfsi/solid/failure_slot.hpp"
+#include "mpsfsi/solid/solid_parameters.hpp"
+
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+
+// Brittle solid: the default models with the maximum principal stress criterion (eq 27).
+template <int Dim>
+struct BrittleSolidPolicies : SolidDefaults<Dim> {
+  using failure = MaxPrincipalStress;
+};
+
+// Brittle fracture of an ElasticSolver whose failure model has `enabled = true` (docs/theory.md,
+// section 5): after each step, the stress the criterion reads (failure_stress.hpp) at every
+// particle, eq 27 against the particle's strength, and for each failing particle, strongest first,
+// the bonds cut across its crack plane (crack_plane.hpp); the failures are logged. The solver
+// holds one and calls it; it owns the model object, the per-particle strengths (the `strength`
+// and `failure_stress` output fields) and the record.
+template <int Dim, class Failure>
+class FractureProcess {
+  static_assert(check_failure_model<Failure, Dim>());
+
+ public:
+  using readout_settings = typename FailureStressReadout<Dim>::Settings;
+
+  explicit FractureProcess(Failure failure) : failure_(std::move(failure)) {}
+
+  // Adds the `strength` and `failure_stress` fields and gives each particle its strength:
+  // sigma_f, or what the failure model assigns (strength.hpp), checked for count and sign.
+  void initialize(ParticleSet<Dim>& set, const SolidParameters<Dim>& p, double particle_volume) {
+    strength_ = set.template add_field<double>("strength");
+    failure_stress_ = set.template add_field<double>("failure_stress");
+    auto& strength = set.field(strength_);
+    if constexpr (detail::has_assign_strengths<Failure>::value) {
+      const StrengthSetup setup{p.tensile_strength, p.youngs_modulus, p.poisson_ratio, p.l0, particle_volume,
+                                &set.ids()};
+      failure_.assign_strengths(setup, strength);
+      if (strength.size() != set.size())
+        detail::throw_invalid("ElasticSolver", "the failure model assigned " + std::to_string(strength.size()) +
+                                                   " strengths for " + std::to_string(set.size()) + " particles");
+      for (std::size_t i = 0; i < strength.size(); ++i)
+        if (!(strength[i] > 0) || std::isnan(strength[i]))
+          detail::throw_invalid("ElasticSolver", "the failure model assigned particle " + std::to_string(i) +
+                                                     " a strength that is not positive");
+    } else {
+      std::fill(strength.begin(), strength.end(), p.tensile_strength);
+    }
+  }
+
+  // Where and how the solid is now, for one check.
+  struct State {
+    ParticleSet<Dim>& set;
+    BondList<Dim, double>& bonds;
+    const MatArray<Dim, double>& stresses;    // at the particle centres
+    const VecArray<Dim, double>& reference;   // reference positions
+    const VecArray<Dim, double>& external;    // external forces (mark a face as loaded)
+    const DeformationFit<Dim, double>* fit;   // the stress model's fit for surface reads, or nullptr
+    readout_settings readout;
+    double crack_half_width, re, time;
+  };
+
+  // Eq 27 at every particle that `fixed(i)` does not hold and that has an intact bond; each
+  // failing particle, strongest first, cuts the bonds across its crack plane. `touching(i)`:
+  // whether particle i is in contact (a loaded face, for the surface read-out). The particles
+  // whose bonds changed are appended to `touched`. Returns whether any bond was cut.
+  template <class Fixed, class Touching>
+  bool apply(const State& s, Fixed&& fixed, Touching&& touching, std::vector<std::size_t>& touched,
+             std::vector<std::size_t>& scratch) {
+    const auto& x = s.set.positions();
+    const std::size_t n = s.set.size();
+    // An external force marks its particle as loaded from then on (failure_stress.hpp: why).
+    if (s.fit) {
+      carried_external_.resize(n, 0);
+      MPSFSI_OMP(parallel for schedule(static))
+      for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i)
+        if (!s.external[static_cast<std::size_t>(i)].isZero(0.0)) carried_external_[static_cast<std::size_t>(i)] = 1;
+    }
+    const auto loaded = [&](std::size_t i) { return touching(i) || carried_external_[i] != 0; };
+    const auto& sigma = readout_.read(s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout);
+    failing_.clear();
+    const auto& strength = s.set.field(strength_);
+    auto& read = s.set.field(failure_stress_);
+    MPSFSI_OMP(parallel)
+    {
+      std::vector<Failing> mine;
+      MPSFSI_OMP(for schedule(static) nowait)
+      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
+        read[i] = 0;
+        if (fixed(i) || s.bonds.intact_count(i) == 0) continue;
+        Vec<Dim, double> direction;
+        const double s1 = failure_.template principal<Dim, double>(sigma[i], direction);
+        read[i] = s1;
+        if (s1 >= strength[i]) mine.push_back({s1, i, direction});
+      }
+      MPSFSI_OMP(critical)
+      failing_.insert(failing_.end(), mine.begin(), mine.end());
+    }
+    if (failing_.empty()) return false;
+    std::sort(failing_.begin(), failing_.end(), [](const Failing& a, const Failing& b) {
+      return a.sigma1 > b.sigma1 || (a.sigma1 == b.sigma1 && a.particle < b.particle);
+    });
+    std::size_t cut = 0;
+    for (const auto& f : failing_) {
+      const std::size_t cut_here =
+          cut_bonds_across_plane(s.bonds, x, f.particle, f.normal, s.crack_half_width, s.re, touched, scratch);
+      if (cut_here == 0) continue;  // no intact bond across its plane: nothing breaks, nothing logged
+      cut += cut_here;
+      log_.push_back({s.time, f.particle, f.sigma1, f.normal});
+      if (first_failure_time_ < 0) first_failure_time_ = s.time;
+    }
+    return cut > 0;
+  }
+
+  const Failure& model() const { return failure_; }
+  const std::vector<FailureEvent<Dim>>& log() const { return log_; }
+  double first_failure_time() const { return first_failure_time_; }
+  const std::vector<double>& strengths(const ParticleSet<Dim>& set) const { return set.field(strength_); }
+  const std::vector<double>& criterion_stresses(const ParticleSet<Dim>& set) const { return set.field(failure_stress_); }
+
+  // Checkpoints (io/checkpoint.hpp): the read-out's first-read data, the particles that have
+  // carried an external force, and the record. The strengths are fields of the particle set.
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    readout_.checkpoint_state(a);
+    a.array(carried_external_);
+    a.value(first_failure_time_);
+    std::uint64_t failures = log_.size();
+    a.value(failures);  // overwritten when reading
+    log_.resize(static_cast<std::size_t>(failures));
+    for (auto& e : log_) {
+      a.value(e.time);
+      a.value(e.particle);
+      a.value(e.sigma1);
+      a.value(e.normal);
+    }
+  }
+
+ private:
+  struct Failing {
+    double sigma1;
+    std::size_t particle;
+    Vec<Dim, double> normal;
+  };
+  Failure failure_;
+  FieldHandle<double> strength_, failure_stress_;
+  FailureStressReadout<Dim> readout_;
+  std::vector<std::uint8_t> carried_external_;  // has carried an external force (surface read-out)
+  std::vector<Failing> failing_;
+  std::vector<FailureEvent<Dim>> log_;
+  double first_failure_time_ = -1;
+};
+
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi
