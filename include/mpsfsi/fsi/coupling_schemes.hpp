@@ -152,8 +152,8 @@ struct InterfaceQuasiNewton {
   int max_iterations = 50;
   double tolerance = 1e-3;
   double initial_relaxation = 0.5;  // omega of the first iteration when the model has no column
-  int reuse_steps = 8;              // steps whose columns are kept
-  int max_columns = 64;
+  int reuse_steps = 8;              // steps whose columns are kept (read at the first step)
+  int max_columns = 64;             // read at the first step
 
   template <class Step>
   void advance(Step& step) {

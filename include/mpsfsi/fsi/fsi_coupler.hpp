@@ -111,12 +111,30 @@ class FsiCoupler {
                             c_.step_count_ + 1, c_.fluid_.time(), -1);
     }
 
+    Step(const Step&) = delete;  // valid for the one step it was handed for
+    Step& operator=(const Step&) = delete;
+
    private:
     friend class FsiCoupler;
     explicit Step(FsiCoupler& coupler) : c_(coupler) {}
     FsiCoupler& c_;
   };
   static_assert(check_coupling_scheme<Scheme, Step>());
+
+ private:
+  template <class P, class = void>
+  struct has_checkpoint_member : std::false_type {};
+  template <class P>
+  struct has_checkpoint_member<P, std::void_t<decltype(std::declval<P&>().checkpoint_state(
+                                      std::declval<detail::CheckpointWriter&>()))>> : std::true_type {};
+  // An iterative scheme returns the structure to t^n through its checkpoint state.
+  static_assert(!Scheme::iterative || (has_checkpoint_member<typename Solid::stress_model_type>::value &&
+                                       has_checkpoint_member<typename Solid::contact_type>::value),
+                "FsiCoupler: an iterative coupling scheme returns the structure to the start of each step through "
+                "its checkpoint state: the stress model and the contact policy need "
+                "`template <class Archive> void checkpoint_state(Archive&)` (docs/extending.md)");
+
+ public:
 
   // Takes the fluid's particles (fluid, wall, dummy: the tank without the structure), its
   // parameters, the structure (with its boundary conditions already set) and the coupling
@@ -170,7 +188,12 @@ class FsiCoupler {
     fluid_solves_ = 0;
     structure_advances_ = 0;
     Step handle(*this);
-    scheme_.advance(handle);
+    try {
+      scheme_.advance(handle);
+    } catch (...) {
+      iterations_ = fluid_solves_;  // last_iterations() reports the failed step's solves
+      throw;
+    }
     if (fluid_solves_ == 0 || structure_advances_ == 0)
       detail::throw_invalid("FsiCoupler", std::string("the coupling scheme '") + Scheme::name + "' ended a step without " +
                                               (fluid_solves_ == 0 ? "solving the fluid" : "advancing the structure"));
@@ -368,13 +391,13 @@ class FsiCoupler {
 
   int advance_structure(double dt, const vec_array& load) {
     const auto t0 = std::chrono::steady_clock::now();
-    if (applied_force_.size() != load.size())
-      detail::throw_invalid("FsiCoupler", "applied_force() must keep one entry per structure particle (" +
-                                              std::to_string(load.size()) + ")");
-    if (load.size() != solid_.particles().size())
+    const std::size_t n = solid_.particles().size();
+    if (load.size() != n)
       detail::throw_invalid("FsiCoupler", "the coupling scheme's load has " + std::to_string(load.size()) +
-                                              " entries for " + std::to_string(solid_.particles().size()) +
-                                              " structure particles");
+                                              " entries for " + std::to_string(n) + " structure particles");
+    if (applied_force_.size() != n)
+      detail::throw_invalid("FsiCoupler", "applied_force() must keep one entry per structure particle (" +
+                                              std::to_string(n) + ")");
     auto& f = solid_.external_force();
     f.resize(load.size());
     for (std::size_t s = 0; s < load.size(); ++s) {

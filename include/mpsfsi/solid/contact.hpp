@@ -23,7 +23,7 @@ inline namespace MPSFSI_ABI {
 //   void add_forces(const VecArray& x, const VecArray& v, const BondList&, VecArray& force);  // adds
 //   Scalar energy(const VecArray& x, const BondList&) const;
 //   std::size_t active_pairs() const;
-//   template <class Archive> void checkpoint_state(Archive&);  // only for checkpoints
+//   template <class Archive> void checkpoint_state(Archive&);  // checkpoints and iterative coupling
 
 // No contact at all (a single body that never breaks, or a user who handles it elsewhere).
 struct NoContact {

@@ -15,8 +15,8 @@ namespace mpsfsi {
 inline namespace MPSFSI_ABI {
 
 // Compile-time checks of ElasticSolver's stress-model and contact slots (docs/extending.md lists
-// what each must provide); the failure model's are in fracture/failure_criteria.hpp.
-// ElasticSolver static_asserts them, so a policy that lacks a member fails with a message naming
+// what each must provide); the failure model's are in fracture/policy_checks.hpp, which
+// FractureProcess static_asserts. ElasticSolver static_asserts these, so a policy that lacks a member fails with a message naming
 // it rather than with an error deep in the solver.
 namespace detail {
 
