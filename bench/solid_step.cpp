@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "mpsfsi/core/parallel.hpp"
-#include "mpsfsi/scenes/oscillating_plate.hpp"
+#include "bench_plate.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 
 using namespace mpsfsi;
@@ -20,17 +20,9 @@ template <int Dim, class Policies>
 void solid_step(benchmark::State& state) {
   const int saved = parallel::max_threads();
   parallel::set_num_threads(static_cast<int>(state.range(1)));
-  // The GMS plate scaled so that it has range(0) particles along its length and L/H = 10.
-  scenes::OscillatingPlate plate;
-  const double l0 = plate.length / static_cast<double>(state.range(0));
-  plate.thickness = plate.width = plate.length / 10;
-  std::vector<std::size_t> clamped;
-  std::size_t tip = 0;
-  SolidParameters<Dim> p;
-  p.l0 = l0;
-  plate.set_material(p);
-  ElasticSolver<Dim, Policies> solver(plate.particles<Dim>(l0, 4, clamped, tip), p);
-  for (const auto i : clamped) solver.clamp(i);
+  bench::BenchPlate<Dim> plate(state.range(0));
+  ElasticSolver<Dim, Policies> solver(plate.particles, plate.params);
+  for (const auto i : plate.clamped) solver.clamp(i);
   for (int k = 0; k < 10; ++k) solver.step();
   for (auto _ : state) solver.step();
   parallel::set_num_threads(saved);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <random>
 
 #include <Eigen/Eigenvalues>
@@ -135,6 +136,66 @@ TEST_CASE("fracture.failure_criteria: the crack normal has the same sign convent
   CHECK((n - Vec<3>(0, 1, 0)).norm() < 1e-12);
   MaxPrincipalStress::principal<3, double>(Mat<3>(Vec<3>(0, 1e6, 2e6).asDiagonal()), n);
   CHECK((n - Vec<3>(0, 0, 1)).norm() < 1e-12);
+}
+
+// The 3D closed form against Eigen's iterative self-adjoint solver: random tensors, and tensors
+// with sigma_1 and sigma_2 1e-3, 1e-6 and 1e-8 of the principal stresses' spread apart (at 1e-8
+// the direction within their plane is not defined to round-off, and only the residual is
+// checked) or sigma_2 and sigma_3 1e-9 apart; exact double and triple roots, also rotated; a
+// tensor of 1e-200 and one of 1e200. Bounds: round-off.
+TEST_CASE("fracture.failure_criteria: the 3D closed form agrees with an iterative eigen-decomposition") {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-2e6, 2e6);
+  double worst_value = 0, worst_direction = 0, worst_residual = 0;
+  for (int k = 0; k < 5000; ++k) {
+    const double w = u(rng), x = u(rng), y = u(rng), z = u(rng);
+    const Mat<3> q = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
+    Vec<3> values;
+    for (int i = 0; i < 3; ++i) values[i] = u(rng);
+    std::sort(values.data(), values.data() + 3);
+    const int family = k % 5;  // 0: random; 1-3: sigma_1 close to sigma_2; 4: sigma_2 close to sigma_3
+    const double spread = values[2] - values[0];
+    if (family >= 1 && family <= 3) values[1] = values[2] - std::pow(10.0, family == 3 ? -8.0 : -3.0 * family) * spread;
+    if (family == 4) values[1] = values[0] + 1e-9 * spread;
+    const Mat<3> s = q * values.asDiagonal() * q.transpose();
+    Vec<3> n;
+    const double s1 = MaxPrincipalStress::principal<3, double>(s, n);
+    Eigen::SelfAdjointEigenSolver<Mat<3>> eig(s);
+    worst_value = std::max(worst_value, std::abs(s1 - eig.eigenvalues()[2]) / s.norm());
+    worst_residual = std::max(worst_residual, (s * n - s1 * n).norm() / s.norm());
+    CHECK(n.norm() == doctest::Approx(1.0).epsilon(1e-12));
+    if (family != 3) worst_direction = std::max(worst_direction, 1 - alignment<3>(n, eig.eigenvectors().col(2)));
+  }
+  CHECK(worst_value < 1e-14);
+  CHECK(worst_residual < 1e-14);
+  CHECK(worst_direction < 1e-12);
+  SUBCASE("exact double and triple roots") {
+    Vec<3> n;
+    // Uniaxial compression: sigma_1 = 0 on the whole y-z plane.
+    CHECK(std::abs(MaxPrincipalStress::principal<3, double>(Mat<3>(Vec<3>(-1e6, 0, 0).asDiagonal()), n)) < 1e-9);
+    CHECK(std::abs(n[0]) < 1e-12);
+    // Equibiaxial tension in x-z: sigma_1 = 2e6 with n in that plane.
+    CHECK(MaxPrincipalStress::principal<3, double>(Mat<3>(Vec<3>(2e6, -1e6, 2e6).asDiagonal()), n) ==
+          doctest::Approx(2e6).epsilon(1e-14));
+    CHECK(std::abs(n[1]) < 1e-12);
+    // The same, rotated: n in the rotated plane.
+    const Mat<3> q = Eigen::AngleAxisd(0.7, Vec<3>(1, 2, 3).normalized()).toRotationMatrix();
+    CHECK(MaxPrincipalStress::principal<3, double>(Mat<3>(q * Vec<3>(2e6, -1e6, 2e6).asDiagonal() * q.transpose()), n) ==
+          doctest::Approx(2e6).epsilon(1e-14));
+    CHECK(std::abs(n.dot(q.col(1))) < 1e-12);
+    // Isotropic: any direction, x returned.
+    CHECK(MaxPrincipalStress::principal<3, double>(Mat<3>(Mat<3>::Identity() * 5e5), n) == doctest::Approx(5e5).epsilon(1e-14));
+    CHECK((n - Vec<3>::UnitX()).norm() == 0);
+  }
+  SUBCASE("scaled far from a stress's size") {
+    const Mat<3> s = Mat<3>(Vec<3>(3, -1, 2).asDiagonal()) + Mat<3>::Constant(0.5);
+    Vec<3> n, m;
+    const double s1 = MaxPrincipalStress::principal<3, double>(s, n);
+    for (const double factor : {1e-200, 1e200}) {
+      CHECK(MaxPrincipalStress::principal<3, double>(Mat<3>(factor * s), m) == doctest::Approx(factor * s1).epsilon(1e-14));
+      CHECK((m - n).norm() < 1e-14);
+    }
+  }
 }
 
 TEST_CASE("fracture.failure_criteria: NoFailure never reaches any strength") {

@@ -37,7 +37,9 @@ struct ModelBlock {
 const LameConstants<double> kLame{1.5e6, 1.0e6};
 
 // The force loop against a plain sum over directed bonds, t_ij = V P_i g_ij + 2c beta_ij delta_ij
-// added to i and subtracted from j, with the model's own fit, on 1, 2 and 3 threads.
+// added to i and subtracted from j, with the model's own fit, on 1, 2 and 3 threads; the loop
+// that also gives the stresses gives the same forces, the stresses of the fit's F to round-off,
+// and those of stresses() to the bit.
 template <int Dim>
 void check_force_loop_against_bond_sum(ModelBlock<Dim, CorrectedTotalLagrangian<Dim>>& block, const VecArray<Dim>& x) {
   const auto& fit = block.model.fit();
@@ -59,6 +61,11 @@ void check_force_loop_against_bond_sum(ModelBlock<Dim, CorrectedTotalLagrangian<
   double scale = 0;
   for (const auto& r : reference) scale = std::max(scale, r.norm());
   CHECK(scale > 0);
+  MatArray<Dim> expected_stress;
+  detail::fitted_cauchy_stresses(fit, x, block.bonds, kLame, expected_stress);
+  double stress_scale = 0;
+  for (const auto& s : expected_stress) stress_scale = std::max(stress_scale, s.norm());
+  CHECK(stress_scale > 0);
   const int saved = parallel::max_threads();
   for (int threads = 1; threads <= 3; ++threads) {
     CAPTURE(threads);
@@ -72,6 +79,19 @@ void check_force_loop_against_bond_sum(ModelBlock<Dim, CorrectedTotalLagrangian<
       worst = std::max(worst, (f[i] - reference[i]).norm());
     }
     CHECK(worst < 1e-12 * scale);
+    VecArray<Dim> f_with_stress;
+    MatArray<Dim> stress;
+    block.model.internal_forces(x, block.bonds, f_with_stress, stress);
+    REQUIRE(stress.size() == x.size());
+    MatArray<Dim> on_demand;
+    block.model.stresses(x, block.bonds, on_demand);
+    double worst_stress = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      CHECK(f_with_stress[i] == f[i]);  // the same loop
+      CHECK(on_demand[i] == stress[i]);
+      worst_stress = std::max(worst_stress, (stress[i] - expected_stress[i]).norm());
+    }
+    CHECK(worst_stress < 1e-12 * stress_scale);
   }
   parallel::set_num_threads(saved);
 }

@@ -130,7 +130,9 @@ class FailureStressReadout {
       mat_type sum = mat_type::Zero();
       double weight = 0;
       for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
-        const double w = bonds.weight(b);
+        // A bond's weight is its first read's until it is cut (BondList::weight, without
+        // recomputing it from r0).
+        const double w = bonds.beta(b) == 0 ? 0.0 : initial_weight_[static_cast<std::size_t>(b)];
         const auto k = static_cast<std::size_t>(bonds.neighbor(b));
         if (along_face && !same_face(i, k)) continue;
         if (w == 0) {

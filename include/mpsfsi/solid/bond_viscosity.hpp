@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "mpsfsi/core/abi.hpp"
 #include "mpsfsi/core/parallel.hpp"
@@ -16,30 +17,44 @@ inline namespace MPSFSI_ABI {
 //   f_i += coefficient sum_j beta_ij |r0_ij| ((v_j - v_i) . e_ij) e_ij,   e_ij = r_ij / |r_ij|,
 // with beta_ij |r0_ij| = w0_ij / |r0_ij|. ElasticSolver passes
 // coefficient = bond_viscosity rho c_p V d / n0. Cut bonds (beta = 0) and coincident particles
-// add nothing.
+// add nothing. Each bond's w0 / |r0| is kept from the bonds as built (a bond's reference vector
+// never changes; a cut is read from beta at each call), and ((v_j - v_i) . r) r / |r|^2 needs no
+// square root: per bond, the loop reads two positions, two velocities and two numbers.
 template <int Dim>
-void add_bond_viscosity(const BondList<Dim, double>& bonds, const VecArray<Dim, double>& x,
-                        const VecArray<Dim, double>& v, double coefficient, VecArray<Dim, double>& force) {
-  const auto& offsets = bonds.offsets();
-  const auto& nb = bonds.neighbors();
-  const auto& r0 = bonds.reference_vectors();
-  const auto& beta = bonds.betas();
-  MPSFSI_OMP(parallel for schedule(static))
-  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    Vec<Dim, double> sum = Vec<Dim, double>::Zero();
-    for (Offset b = offsets[i]; b < offsets[i + 1]; ++b) {
-      const auto k = static_cast<std::size_t>(b);
-      const auto j = static_cast<std::size_t>(nb[k]);
-      const Vec<Dim, double> r = x[j] - x[i];
-      const double len = r.norm();
-      if (beta[k] == 0 || len == 0) continue;
-      const Vec<Dim, double> e = r / len;
-      sum += (beta[k] * r0[k].norm() * (v[j] - v[i]).dot(e)) * e;  // w0 / |r0| = beta |r0|
-    }
-    force[i] += coefficient * sum;
+class BondViscosity {
+ public:
+  void initialize(const BondList<Dim, double>& bonds) {
+    const auto& r0 = bonds.reference_vectors();
+    const auto& beta = bonds.betas();
+    weight_over_length_.resize(r0.size());
+    for (std::size_t k = 0; k < r0.size(); ++k) weight_over_length_[k] = beta[k] * r0[k].norm();
   }
-}
+
+  void add(const BondList<Dim, double>& bonds, const VecArray<Dim, double>& x, const VecArray<Dim, double>& v,
+           double coefficient, VecArray<Dim, double>& force) const {
+    const Offset* const offsets = bonds.offsets().data();
+    const Index* const nb = bonds.neighbors().data();
+    const double* const beta = bonds.betas().data();
+    const double* const weight = weight_over_length_.data();
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      Vec<Dim, double> sum = Vec<Dim, double>::Zero();
+      for (Offset b = offsets[i]; b < offsets[i + 1]; ++b) {
+        const auto k = static_cast<std::size_t>(b);
+        const auto j = static_cast<std::size_t>(nb[k]);
+        const Vec<Dim, double> r = x[j] - x[i];
+        const double length2 = r.squaredNorm();
+        if (beta[k] == 0 || length2 == 0) continue;
+        sum += (weight[k] * (v[j] - v[i]).dot(r) / length2) * r;
+      }
+      force[i] += coefficient * sum;
+    }
+  }
+
+ private:
+  std::vector<double> weight_over_length_;  // w0_ij / |r0_ij| = beta_ij |r0_ij| per directed bond
+};
 
 }  // namespace MPSFSI_ABI
 }  // namespace mpsfsi

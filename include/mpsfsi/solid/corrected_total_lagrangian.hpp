@@ -18,12 +18,15 @@ inline namespace MPSFSI_ABI {
 
 // A stress-model policy of ElasticSolver provides
 //   static constexpr const char* name;
-//   void initialize(const BondList&, const SolidModelContext&);   // again after bonds are cut
+//   void initialize(const BondList&, const SolidModelContext&);
+//   void bonds_changed(const BondList&, const std::vector<std::size_t>& particles);  // after cuts
 //   void internal_forces(const VecArray& x, const BondList&, VecArray& force);  // overwrites force
 //   void stresses(const VecArray& x, const BondList&, MatArray& sigma);  // Cauchy, per particle
 //   Scalar strain_energy(const VecArray& x, const BondList&) const;
 //   void kick(Scalar dt); void drift(Scalar dt);   // particle rotation, if the model has it
-// internal_forces() is called once per step on the new positions; the others on demand.
+// and optionally internal_forces(x, bonds, force, sigma), the forces and the stresses of x in one
+// pass (docs/extending.md, "Stress model"). internal_forces() is called once per step on the new
+// positions; the others on demand.
 
 // Corrected total-Lagrangian solid with the St Venant-Kirchhoff law (docs/theory.md, section 3.3,
 // the "corrected" model): per particle the deformation gradient F_i of the second-order fit
@@ -86,7 +89,22 @@ class CorrectedTotalLagrangian {
   // the bond graph's bandwidth of that block: only that stretch is zeroed and added (the whole
   // array when the particles are not ordered in space). Each thread keeps the group's du_ij in its
   // own rows of scratch_. Nothing is allocated after the first call.
-  void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>&, VecArray<Dim, Scalar>& force) {
+  void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds, VecArray<Dim, Scalar>& force) {
+    forces_and_stresses(x, bonds, force, nullptr);
+  }
+
+  // The forces and, from the same fit, the Cauchy stress sigma_i = F_i S_i F_i^T / det F_i of
+  // every particle (what stresses() gives at x): the solver asks for both when it reads the
+  // stresses at every step (fracture), which then cost no pass over the bonds of their own.
+  void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds, VecArray<Dim, Scalar>& force,
+                       MatArray<Dim, Scalar>& sigma) {
+    sigma.resize(x.size());
+    forces_and_stresses(x, bonds, force, sigma.data());
+  }
+
+ private:
+  void forces_and_stresses(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>&, VecArray<Dim, Scalar>& force,
+                           mat_type* const cauchy) {
     using lane_type = Eigen::Array<Scalar, lanes, 1>;
     using lane_map = Eigen::Map<const lane_type>;
     using packed_type = detail::PackedBonds<Dim, Scalar, lanes>;
@@ -206,6 +224,7 @@ class CorrectedTotalLagrangian {
             for (int c = 0; c < Dim; ++c) vp[a][b] += u[a][c] * stress[c][b];
             vp[a][b] *= v;
           }
+        if (cauchy) store_cauchy(u, vp, v, i0, present, cauchy);
         // t_ij = V P_i g_ij + 2c beta_ij (du_ij - U phi(r0_ij)): + to i, - to j.
         lane_type own[Dim];
         for (int a = 0; a < Dim; ++a) own[a].setZero();
@@ -247,9 +266,11 @@ class CorrectedTotalLagrangian {
     }
   }
 
-  // Cauchy stress at positions x.
+ public:
+  // Cauchy stress at positions x, from the force loop (the same bits as the stresses it gives with
+  // the forces; equal to detail::fitted_cauchy_stresses to round-off).
   void stresses(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds, MatArray<Dim, Scalar>& sigma) {
-    detail::fitted_cauchy_stresses(fit_, x, bonds, context_.lame, sigma);
+    internal_forces(x, bonds, unused_force_, sigma);
   }
 
   // U = sum_i V psi(E_i) + U_stab (the energy whose gradient the forces are).
@@ -274,6 +295,21 @@ class CorrectedTotalLagrangian {
   const fit_type& fit() const { return fit_; }
 
  private:
+  // sigma = (F S) F^T / det F per lane, with F S = vp / V, into the particles i0 .. i0 + present.
+  template <class Lane>
+  static void store_cauchy(const Lane (&u)[Dim][width], const Lane (&vp)[Dim][Dim], Scalar volume, std::size_t i0,
+                           std::size_t present, mat_type* cauchy) {
+    for (std::size_t l = 0; l < present; ++l) {
+      mat_type f, fs;
+      for (int a = 0; a < Dim; ++a)
+        for (int b = 0; b < Dim; ++b) {
+          f(a, b) = (a == b ? Scalar(1) : Scalar(0)) + u[a][b][l];
+          fs(a, b) = vp[a][b][l] / volume;
+        }
+      cauchy[i0 + l] = fs * f.transpose() / f.determinant();
+    }
+  }
+
   Scalar stabilization_constant() const {
     return stabilization * context_.lame.mu * context_.volume * Scalar(Dim) / context_.n0;
   }
@@ -282,6 +318,7 @@ class CorrectedTotalLagrangian {
   fit_type fit_;
   detail::PackedBonds<Dim, Scalar, lanes> packed_;
   VecArray<Dim, Scalar> partial_;  // the forces threads 1.. add up, one copy per thread
+  VecArray<Dim, Scalar> unused_force_;  // what stresses() computes besides them
   std::vector<Scalar> scratch_;  // du_ij of the group in hand (Dim x lanes per slot), per thread
 };
 

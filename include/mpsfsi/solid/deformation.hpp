@@ -114,8 +114,17 @@ class DeformationFit {
     return a;
   }
 
+  // F_i, the linear part of A_i (the same sums as affine(), without the quadratic columns).
   mat_type gradient(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds, std::size_t i) const {
-    return affine(x, bonds, i).template leftCols<Dim>();
+    mat_type f = mat_type::Zero();
+    const vec_type xi = x[i];
+    const auto& nb = bonds.neighbors();
+    const auto& r0 = bonds.reference_vectors();
+    for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const auto k = static_cast<std::size_t>(b);
+      f.noalias() += (x[static_cast<std::size_t>(nb[k])] - xi - r0[k]) * coeff_[k].template head<Dim>().transpose();
+    }
+    return f + mat_type::Identity();
   }
 
   // Deformation gradient of the fitted map a = A_i at reference offset r from particle i: the

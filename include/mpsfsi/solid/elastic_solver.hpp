@@ -155,6 +155,7 @@ class ElasticSolver {
     mass_ = p_.density * context_.volume;
     if constexpr (can_fail) fracture_.initialize(set_, p_, context_.volume);
     model_.initialize(bonds_, context_);
+    if (p_.bond_viscosity > 0) viscosity_.initialize(bonds_);
     contact_.initialize(n, p_.contact_distance(), p_.contact_stiffness(),
                         2 * p_.contact_damping_ratio * std::sqrt(p_.contact_stiffness() * 0.5 * mass_));
     constraint_.assign(n, Constraint::free);
@@ -235,7 +236,10 @@ class ElasticSolver {
     }
     model_.kick(0.5 * dt);
     model_.drift(dt);
-    compute_forces(x_next_, v_next_, force_next_);
+    // With fracture the stresses are read after every step: the stress model computes them with
+    // the forces when it can, into stress_next_, which becomes the stress field when the step is
+    // committed.
+    const bool with_stresses = compute_forces(x_next_, v_next_, force_next_, can_fail ? &stress_next_ : nullptr);
     const double inv_m = 1 / mass_;
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
@@ -248,12 +252,14 @@ class ElasticSolver {
     set_.positions().swap(x_next_);
     set_.velocities().swap(v_next_);
     force_.swap(force_next_);
+    if (with_stresses) set_.field(stress_field_).swap(stress_next_);
     time_ += dt;
     last_dt_ = dt;
     ++step_count_;
-    stresses_current_ = false;
+    stresses_current_ = with_stresses;
     if constexpr (can_fail) {
-      if (apply_failure()) compute_forces(set_.positions(), set_.velocities(), force_);
+      if (apply_failure())
+        stresses_current_ = compute_forces(set_.positions(), set_.velocities(), force_, &set_.field(stress_field_));
     }
   }
 
@@ -448,13 +454,24 @@ class ElasticSolver {
 
   // The forces on the particles at positions x, all but the external one and gravity:
   // f_internal + f_contact + f_viscous (m a adds f_external + m g, in step()). The bond viscosity
-  // uses the velocities it is given (the half-step ones inside step()).
-  void compute_forces(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force) {
-    model_.internal_forces(x, bonds_, force);
+  // uses the velocities it is given (the half-step ones inside step()). Given `stresses`, a
+  // stress model that computes the Cauchy stresses with its forces writes those of x there;
+  // returns whether it did.
+  bool compute_forces(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force,
+                      MatArray<Dim, double>* stresses = nullptr) {
+    bool with_stresses = false;
+    if constexpr (detail::has_model_forces_with_stresses<stress_model_type, Dim>::value) {
+      if (stresses) {
+        model_.internal_forces(x, bonds_, force, *stresses);
+        with_stresses = true;
+      }
+    }
+    if (!with_stresses) model_.internal_forces(x, bonds_, force);
     contact_.add_forces(x, v, bonds_, force);
     if (p_.bond_viscosity > 0)
-      add_bond_viscosity(bonds_, x, v, p_.bond_viscosity * p_.density * p_.p_wave_speed() * context_.volume * Dim / context_.n0,
-                         force);
+      viscosity_.add(bonds_, x, v, p_.bond_viscosity * p_.density * p_.p_wave_speed() * context_.volume * Dim / context_.n0,
+                     force);
+    return with_stresses;
   }
 
   // Eq 27 at every particle, and the cuts of the failing ones (FractureProcess). The stress is
@@ -543,6 +560,7 @@ class ElasticSolver {
   SolidModelContext<Dim, double> context_;
   stress_model_type model_;
   contact_type contact_;
+  BondViscosity<Dim> viscosity_;
   fracture_type fracture_;
   double mass_ = 0;
   FieldHandle<std::int32_t> body_, constraint_field_, fragment_;
@@ -553,6 +571,7 @@ class ElasticSolver {
   VecArray<Dim, double> prescribed_velocity_;  // the velocity, or the unit normal of a support
   VecArray<Dim, double> external_, force_;
   VecArray<Dim, double> x_next_, v_next_, force_next_;
+  MatArray<Dim, double> stress_next_;  // the stresses of x_next_, when the stress model gives them
   std::vector<std::size_t> body_index_;  // dense body number of each particle
   std::vector<double> body_size_;        // particles per body
   VecArray<Dim, double> body_velocity_;  // mean velocity per body, for the blow-up check

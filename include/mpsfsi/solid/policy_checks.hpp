@@ -50,6 +50,17 @@ struct has_model_internal_forces<M, Dim,
                                      std::declval<const BondList<Dim, double>&>(),
                                      std::declval<VecArray<Dim, double>&>()))>> : std::true_type {};
 
+// Optional: the forces and the Cauchy stresses in one pass.
+template <class M, int Dim, class = void>
+struct has_model_forces_with_stresses : std::false_type {};
+template <class M, int Dim>
+struct has_model_forces_with_stresses<M, Dim,
+                                      std::void_t<decltype(std::declval<M&>().internal_forces(
+                                          std::declval<const VecArray<Dim, double>&>(),
+                                          std::declval<const BondList<Dim, double>&>(),
+                                          std::declval<VecArray<Dim, double>&>(), std::declval<MatArray<Dim, double>&>()))>>
+    : std::true_type {};
+
 template <class M, int Dim, class = void>
 struct has_model_stresses : std::false_type {};
 template <class M, int Dim>
