@@ -2,8 +2,8 @@
 // One whole FluidSolver step of the 2D dam break (docs/performance.md): a 0.25 m x 0.5 m
 // water column in a 1 m x 0.6 m tank, l0 = 5 mm, dt = 2e-4 s, PPE relative residual 1e-8.
 // The solver is first run to t = 0.1 s (the column is collapsing); each benchmark iteration is
-// one step from there on. Arguments: /threads. Counters: particle-steps per second and the share
-// of the step spent in the PPE solve.
+// one step from there on. Arguments: /threads. Counters: particle-steps per second, the share
+// of the step spent in the PPE solve, CG iterations and the milliseconds of each phase a step.
 #include <benchmark/benchmark.h>
 
 #include "mpsfsi/core/parallel.hpp"
@@ -27,18 +27,30 @@ void dam_break_step(benchmark::State& state) {
   p.ppe_tolerance = 1e-8;
   FluidSolver<2, Policies> solver(scenes::dam_break<2>(0.25, 0.5, 1.0, 0.6, p.l0), p);
   solver.advance_to(state.range(1) * 1e-3);
-  double solve = 0, total = 0, iterations = 0;
+  FluidStepTimings sum;
+  double iterations = 0;
   for (auto _ : state) {
     solver.step();
-    solve += solver.last_timings().ppe_solve;
-    total += solver.last_timings().total();
+    const FluidStepTimings& t = solver.last_timings();
+    sum.search += t.search;
+    sum.predictor += t.predictor;
+    sum.ppe_assembly += t.ppe_assembly;
+    sum.ppe_solve += t.ppe_solve;
+    sum.corrector += t.corrector;
     iterations += solver.last_solve().iterations;
   }
   parallel::set_num_threads(saved);
   const auto n = static_cast<double>(solver.particles().size());
   state.counters["particles"] = n;
   state.counters["particle-steps/s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["ppe_solve_share"] = solve / total;
+  state.counters["ppe_solve_share"] = sum.ppe_solve / sum.total();
+  // Milliseconds per step in each phase (FluidSolver::last_timings).
+  const double per_step_ms = 1e3 / static_cast<double>(state.iterations());
+  state.counters["search_ms"] = sum.search * per_step_ms;
+  state.counters["predictor_ms"] = sum.predictor * per_step_ms;
+  state.counters["assembly_ms"] = sum.ppe_assembly * per_step_ms;
+  state.counters["solve_ms"] = sum.ppe_solve * per_step_ms;
+  state.counters["corrector_ms"] = sum.corrector * per_step_ms;
   state.counters["cg_iterations"] = iterations / static_cast<double>(state.iterations());
 }
 

@@ -5,7 +5,7 @@
 usage: python3 examples/droplet_on_ice_beam/plot.py [output dir]   (default out/droplet_on_ice_beam)
 
 Writes snapshots.png (t = 4..10 ms; columns: sigma_xx without fracture, sigma_xx with fracture,
-damage with fracture; water in blue), tip.png (beam-tip displacement against time, both runs)
+damage with fracture; water in blue; of a 3D run the layer of particles nearest mid-width), tip.png (beam-tip displacement against time, both runs)
 and crack_path.png (every particle failure at its initial position, coloured by time).
 """
 import csv
@@ -28,6 +28,19 @@ def rows(path):
     return list(csv.DictReader(open(path)))
 
 
+def mid_layer(beam, fluid):
+    """Of a 3D run (beam rows with z0, the reference z): the beam's particle layer nearest
+    mid-width and the water within half a spacing of it, as a section like the 2D run's. 2D rows
+    are returned unchanged."""
+    if not beam or "z0" not in beam[0]:
+        return beam, fluid
+    layers = sorted({float(p["z0"]) for p in beam})
+    spacing = min(b - a for a, b in zip(layers, layers[1:])) if len(layers) > 1 else 1.0
+    middle = min(layers, key=lambda z: abs(z - 0.5 * (layers[0] + layers[-1])))
+    return ([p for p in beam if float(p["z0"]) == middle],
+            [p for p in fluid if abs(float(p["z"]) - middle) <= 0.5 * spacing])
+
+
 frames = range(4, 11)  # snapshots are written every millisecond from t = 0
 columns = [(run, field) for run in runs for field in (("sxx_Pa",) if run == "without_fracture" else ("sxx_Pa", "damage"))]
 fig, axes = plt.subplots(len(frames), len(columns), figsize=(4.2 * len(columns), 1.5 * len(frames)), squeeze=False,
@@ -40,8 +53,7 @@ for r, frame in enumerate(frames):
         if not beam_file.exists():
             ax.axis("off")
             continue
-        beam = rows(beam_file)
-        fluid = rows(out / run / f"snapshot_{frame:02d}_fluid.csv")
+        beam, fluid = mid_layer(rows(beam_file), rows(out / run / f"snapshot_{frame:02d}_fluid.csv"))
         ax.scatter([float(p["x"]) for p in fluid], [float(p["y"]) for p in fluid], s=0.3, c="tab:blue", alpha=0.4)
         values = [float(p[field]) * (1e-6 if field == "sxx_Pa" else 1) for p in beam]
         kw = dict(cmap="coolwarm", vmin=-3, vmax=3) if field == "sxx_Pa" else dict(cmap="inferno_r", vmin=0, vmax=0.5)
