@@ -50,6 +50,7 @@ struct Options {
   // Where the criterion reads the stress (SolidParameters::failure_stress_at_surface); the
   // default is the library's.
   std::string failure_stress = "surface";
+  double solid_courant = 0;     // structure step as a fraction of l0 / c; 0: the library's default
   double checkpoint_every = 0;  // s between checkpoints; 0: only on Ctrl-C / SIGTERM
   std::string restart;          // checkpoint to continue from (with --only)
   std::string out = "out/droplet_on_ice_beam";
@@ -142,6 +143,7 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
   sp.youngs_modulus = ice.youngs_modulus();
   sp.poisson_ratio = 0.3;
   if constexpr (Dim == 2) sp.plane_model = o.plane == "stress" ? PlaneModel::plane_stress : PlaneModel::plane_strain;
+  if (o.solid_courant > 0) sp.courant = o.solid_courant;  // above max_courant: refused by validate()
   if (fracture) {
     sp.tensile_strength = ice.tensile_strength();
     sp.failure_stress_at_surface = o.failure_stress == "surface";
@@ -318,6 +320,9 @@ int main(int argc, char** argv) try {
   cli.add("--plane", o.plane, "2D plane model of the beam (2D only)")->check(one_of({"stress", "strain"}));
   cli.add("--failure-stress", o.failure_stress, "where the failure criterion reads the stress")
       ->check(one_of({"centre", "surface"}));
+  cli.add("--solid-courant", o.solid_courant,
+          "structure step dt_s = C l0 / c (c the P-wave speed); 0: the library's default (0.25)")
+      ->check(mpsfsi_examples::non_negative());
   cli.add("--checkpoint-every", o.checkpoint_every,
           "simulated time between checkpoints (<run folder>/checkpoint_<step>.bin); 0: only on Ctrl-C / SIGTERM", "s")
       ->check(mpsfsi_examples::non_negative());
