@@ -191,7 +191,12 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
     fluid_pvd.add(state.frame_times[frame], numbered_file_name("fluid", frame));
     beam_pvd.add(state.frame_times[frame], numbered_file_name("beam", frame));
   }
-  const std::vector<std::string> tip_columns = {"t", "tip_dx", "tip_dy", "cut_bonds", "force_x", "force_y"};
+  // With the energies of beam and droplet (per unit width in 2D). Their sum can rise only by the
+  // droplet's fall under gravity (about 0.1 J per kg and cm); the fluid's viscosity, the collision
+  // model and the bond viscosity dissipate.
+  const std::vector<std::string> tip_columns = {"t",       "tip_dx",          "tip_dy",        "cut_bonds",
+                                                "force_x", "force_y",         "beam_kinetic_J", "beam_strain_J",
+                                                "fluid_kinetic_J"};
   CsvWriter tip_csv = o.restart.empty() ? CsvWriter(dir + "/tip.csv", tip_columns)
                                         : CsvWriter::continue_after(dir + "/tip.csv", tip_columns, state.tip_rows);
   mpsfsi_examples::RunCheckpoints checkpoints(dir, o.checkpoint_every);
@@ -223,8 +228,12 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
     }
     const Vec<Dim> d = c.solid().particles().positions()[tip] - tip0;
     state.max_tip = std::max(state.max_tip, std::abs(d[1]));
+    double fluid_kinetic = 0;
+    const auto& fluid = c.fluid().particles();
+    for (std::size_t i = 0; i < c.structure_offset(); ++i)
+      fluid_kinetic += 0.5 * c.fluid().parameters().density * std::pow(l0, Dim) * fluid.velocities()[i].squaredNorm();
     tip_csv.row({t, d[0], d[1], static_cast<double>(c.solid().cut_bonds()), c.total_interface_force()[0],
-                 c.total_interface_force()[1]});
+                 c.total_interface_force()[1], c.solid().kinetic_energy(), c.solid().strain_energy(), fluid_kinetic});
     if (t >= state.next_output - 1e-9) {
       const auto frame = static_cast<std::size_t>(state.frames);
       const std::string ff = numbered_file_name("fluid", frame), bf = numbered_file_name("beam", frame);

@@ -5,8 +5,10 @@
 usage: python3 examples/droplet_on_ice_beam/plot.py [output dir]   (default out/droplet_on_ice_beam)
 
 Writes snapshots.png (t = 4..10 ms; columns: sigma_xx without fracture, sigma_xx with fracture,
-damage with fracture; water in blue; of a 3D run the layer of particles nearest mid-width), tip.png (beam-tip displacement against time, both runs)
-and crack_path.png (every particle failure at its initial position, coloured by time).
+damage with fracture; water in blue; of a 3D run the layer of particles nearest mid-width),
+tip.png (beam-tip displacement against time, both runs), energy.png (beam and droplet energy
+against time, over its initial value) and crack_path.png (every particle failure at its initial
+position, coloured by time).
 """
 import csv
 import sys
@@ -81,6 +83,18 @@ ax.set_ylabel("beam-tip vertical displacement (mm)")
 ax.legend()
 fig.tight_layout()
 fig.savefig(out / "tip.png", dpi=120)
+
+fig, ax = plt.subplots(figsize=(7, 4))
+for run in runs:
+    h = rows(out / run / "tip.csv")
+    total = [float(p["beam_kinetic_J"]) + float(p["beam_strain_J"]) + float(p["fluid_kinetic_J"]) for p in h]
+    ax.plot([1e3 * float(p["t"]) for p in h], [e / total[0] for e in total], label=run.replace("_", " "))
+ax.set_xlabel("t (ms)")
+ax.set_ylabel("energy / initial energy")
+ax.set_title("beam kinetic + strain energy + droplet kinetic energy", fontsize=9)
+ax.legend()
+fig.tight_layout()
+fig.savefig(out / "energy.png", dpi=120)
 
 if "with_fracture" in runs:
     fails = rows(out / "with_fracture" / "failures.csv")
