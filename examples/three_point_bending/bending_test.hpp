@@ -75,6 +75,7 @@ struct Options {
   bool average_failure_stress = true;  // SolidParameters::average_failure_stress
   bool failure_stress_at_surface = true;  // SolidParameters::failure_stress_at_surface
   double contact_damping = 0;          // SolidParameters::contact_damping_ratio
+  mpsfsi::CrackSide crack_side = mpsfsi::CrackSide::fixed_sign;  // SolidParameters::crack_side
   std::string out;          // output directory; empty: no files
   bool progress = false;
   // Checkpoints (examples/common/run_checkpoints.hpp): off unless `checkpoints` is set; then at
@@ -251,6 +252,7 @@ Result run(const IceBeamCase& c, const Options& o) {
   p.average_failure_stress = o.average_failure_stress;
   p.failure_stress_at_surface = o.failure_stress_at_surface;
   p.contact_damping_ratio = o.contact_damping;
+  p.crack_side = o.crack_side;
   p.max_courant = std::max(p.max_courant, o.courant);
   ElasticSolver<Dim, BrittleSolidPolicies<Dim>> s(set, p, body);
   for (std::size_t i = beam_count; i < set.size(); ++i) s.clamp(i);

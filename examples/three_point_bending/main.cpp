@@ -21,6 +21,7 @@ struct Options {
   int dim = 2;
   std::string plane = "stress";
   std::string modulus = "material";
+  std::string crack_side = "fixed-sign";
   bool point_stress = false, centre_stress = false, no_output = false;
   bending::Options run;
 };
@@ -46,6 +47,10 @@ int main(int argc, char** argv) try {
   cli.add("--plane", o.plane, "2D plane model")->check(one_of({"stress", "strain"}));
   cli.flag("--point-stress", o.point_stress, "the criterion reads each particle's own stress (not averaged over its bonds)");
   cli.flag("--centre-stress", o.centre_stress, "the criterion reads the stress at particle centres (not at the surface)");
+  cli.add("--crack-side", o.crack_side,
+          "the side of its crack plane a failing particle keeps: towards +x, or the side that holds it more firmly "
+          "(mirror-symmetric)")
+      ->check(one_of({"fixed-sign", "attachment"}));
   cli.add("--contact-damping", o.run.contact_damping, "damping ratio of the contact's normal dashpot")
       ->check(mpsfsi_examples::non_negative());
   cli.add("--out", o.run.out, "output folder");
@@ -64,6 +69,7 @@ int main(int argc, char** argv) try {
   o.run.plane_model = o.plane == "strain" ? mpsfsi::PlaneModel::plane_strain : mpsfsi::PlaneModel::plane_stress;
   o.run.average_failure_stress = !o.point_stress;
   o.run.failure_stress_at_surface = !o.centre_stress;
+  o.run.crack_side = o.crack_side == "attachment" ? mpsfsi::CrackSide::attachment : mpsfsi::CrackSide::fixed_sign;
   const std::string out = o.no_output ? std::string() : o.run.out;
   o.run.out = out;
   o.run.progress = true;

@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdlib>
 
 #include "mpsfsi/fracture/fracture_process.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
@@ -221,6 +222,77 @@ TEST_CASE("fracture.crack_plane: a face that has carried a load is read at parti
     s.step();
     CAPTURE(loaded_once);
     CHECK((s.cut_bonds() > 0) == !loaded_once);
+  }
+}
+
+// CrackSide::attachment: a principal direction has no sign; the failing particle stays with the
+// side that holds it more firmly, whatever sign the direction came with, and a mirror image of the
+// neighbourhood, deformed or not, gives the mirror image of the normal (docs/theory.md, 5.3).
+TEST_CASE_TEMPLATE("fracture.crack_plane: a failing particle stays with the side it is held to, mirror images alike", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  const double l0 = 0.01, re = 2.1 * l0, mid = 0.035;
+  const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), Vec<Dim>::Constant(0.07), l0);  // 7 columns
+  const auto& x = block.positions();
+  // The image of a particle in the plane x = mid; the centre particle is its own image.
+  const auto mirror = [&](Vec<Dim> p) {
+    p[0] = 2 * mid - p[0];
+    return p;
+  };
+  std::vector<std::size_t> image(x.size(), x.size());
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (std::size_t j = 0; j < x.size(); ++j)
+      if ((x[j] - mirror(x[i])).norm() < 1e-9) image[i] = j;
+  std::size_t c = x.size();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if ((x[i] - Vec<Dim>::Constant(mid)).norm() < 1e-9) c = i;
+  REQUIRE(c < x.size());
+  REQUIRE(image[c] == c);
+  const auto fresh_bonds = [&] {
+    BondList<Dim> bonds;
+    bonds.template build<KoshizukaWeight>(x, std::vector<std::int32_t>(x.size(), 0), re);
+    return bonds;
+  };
+  Vec<Dim> tilted = Vec<Dim>::Zero();
+  tilted[0] = 0.96;
+  tilted[1] = 0.28;
+  const auto mirrored_normal = [](Vec<Dim> n) {
+    n[0] = -n[0];
+    return n;
+  };
+  // An undamaged lattice at rest is a tie: the normal keeps the sign it came with.
+  const BondList<Dim> intact = fresh_bonds();
+  CHECK(orient_toward_attachment(intact, x, c, tilted) == tilted);
+  CHECK(orient_toward_attachment(intact, x, c, Vec<Dim>(-tilted)) == Vec<Dim>(-tilted));
+  // c's bonds to the columns on its right cut: it is held from the left, so the normal points
+  // left whatever its sign was; the mirror image (bonds to the left cut) gives the image normal.
+  for (const double side : {1.0, -1.0}) {
+    BondList<Dim> bonds = fresh_bonds();
+    for (Offset b = bonds.begin(c); b < bonds.end(c); ++b)
+      if (side * (x[static_cast<std::size_t>(bonds.neighbor(b))][0] - mid) > 0.5 * l0) bonds.cut(b);
+    for (const double sign : {1.0, -1.0}) {
+      const Vec<Dim> n = orient_toward_attachment(bonds, x, c, Vec<Dim>(sign * tilted));
+      CAPTURE(side);
+      CAPTURE(sign);
+      CHECK(n[0] == doctest::Approx(-0.96 * side));
+      CHECK(n[1] == doctest::Approx(-0.28 * side));
+    }
+  }
+  // A random deformation and its mirror image: the normals are mirror images.
+  std::srand(7);
+  const auto random = [] { return 2.0 * std::rand() / RAND_MAX - 1.0; };
+  for (int trial = 0; trial < 20; ++trial) {
+    VecArray<Dim> moved(x.size()), moved_image(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i)
+      for (int k = 0; k < Dim; ++k) moved[i][k] = x[i][k] + 0.05 * l0 * random();
+    for (std::size_t i = 0; i < x.size(); ++i) moved_image[image[i]] = mirror(moved[i]);
+    Vec<Dim> n;
+    for (int k = 0; k < Dim; ++k) n[k] = random();
+    n.normalize();
+    const Vec<Dim> chosen = orient_toward_attachment(intact, moved, c, n);
+    const Vec<Dim> chosen_image = orient_toward_attachment(intact, moved_image, c, mirrored_normal(n));
+    CAPTURE(trial);
+    CHECK((chosen_image - mirrored_normal(chosen)).norm() < 1e-12);
   }
 }
 

@@ -36,7 +36,10 @@ struct BrittleSolidPolicies : SolidDefaults<Dim> {
 // Brittle fracture of an ElasticSolver whose failure model has `enabled = true` (docs/theory.md,
 // section 5): after each step, the stress the criterion reads (failure_stress.hpp) at every
 // particle, eq 27 against the particle's strength, and for each failing particle, strongest first,
-// the bonds cut across its crack plane (crack_plane.hpp); the failures are logged. The solver
+// the bonds cut across its crack plane (crack_plane.hpp); the failures are logged. With
+// CrackSide::attachment the side of its plane each failing particle keeps is decided for all of
+// them from the bonds before any is cut (orient_toward_attachment), so the cuts of one check do
+// not depend on their order and a mirror image of the solid cracks as the mirror image. The solver
 // holds one and calls it; it owns the model object, the per-particle strengths (the `strength`
 // and `failure_stress` output fields) and the record.
 template <int Dim, class Failure>
@@ -80,6 +83,7 @@ class FractureProcess {
     const DeformationFit<Dim, double>* fit;   // the stress model's fit for surface reads, or nullptr
     readout_settings readout;
     double crack_half_width, re, time;
+    CrackSide crack_side = CrackSide::fixed_sign;
   };
 
   // Eq 27 at every particle that `fixed(i)` does not hold and that has an intact bond; each
@@ -114,7 +118,9 @@ class FractureProcess {
         Vec<Dim, double> direction;
         const double s1 = failure_.template principal<Dim, double>(sigma[i], direction);
         read[i] = s1;
-        if (s1 >= strength[i]) mine.push_back({s1, i, direction});
+        if (s1 < strength[i]) continue;
+        if (s.crack_side == CrackSide::attachment) direction = orient_toward_attachment(s.bonds, x, i, direction);
+        mine.push_back({s1, i, direction});
       }
       MPSFSI_OMP(critical)
       failing_.insert(failing_.end(), mine.begin(), mine.end());

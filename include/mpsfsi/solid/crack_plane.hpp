@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
@@ -20,7 +21,8 @@ inline namespace MPSFSI_ABI {
 // normal n_c. An intact bond (i, j) is cut when
 //   (eq 34)  i and j lie on opposite sides of the plane, side(p) = [(x_p - x_c) . n_c >= 0]
 //            (a particle on the plane, c itself included, counts on the + side, so c keeps the
-//            bonds on its + side and loses those to the - side), and
+//            bonds on its + side and loses those to the - side: the sign of n_c matters;
+//            SolidParameters::crack_side says how a failing particle's is chosen), and
 //   (eq 35)  at least one of them is within Cw l0 of c measured along the plane,
 //            |(x_p - x_c) - ((x_p - x_c) . n_c) n_c| <= Cw l0,  Cw = sqrt(d)/2 by default.
 // The crack thus opens one particle wide around c and grows as its neighbours fail in turn.
@@ -63,6 +65,36 @@ std::size_t cut_bonds_across_plane(BondList<Dim, Scalar>& bonds, const VecArray<
     }
   }
   return cut;
+}
+
+// The side of its own crack plane that a failing particle c stays on with CrackSide::attachment.
+// A principal direction has no sign, yet cut_bonds_across_plane keeps c with the bonds on the +
+// side of the normal it is given; a fixed sign convention (n_x >= 0) sends c to the left-hand side
+// of one crack and to the right-hand side of its mirror image, and a mirror-symmetric specimen
+// cracks asymmetrically. Here c stays with the side that holds it more firmly across the plane:
+// the normal is turned so that the attachment
+//   A = sum over intact bonds of w_cj (x_j - x_c) . n / |x_j - x_c|
+// (each bond's weight times the cosine of its angle to n, current positions) is not negative.
+// A is continuous in n, so a neighbour close to the plane counts little on either side. A cut
+// bond removes its share; in an undamaged neighbourhood A is zero up to the deformation, which
+// then decides. Where A is zero to round-off (a lattice at rest, a particle on a mirror plane) the
+// normal keeps the sign it came with. A changes sign with a mirror image of the solid, so the
+// crack pattern is mirrored too (docs/theory.md, section 5.3).
+template <int Dim, class Scalar>
+Vec<Dim, Scalar> orient_toward_attachment(const BondList<Dim, Scalar>& bonds, const VecArray<Dim, Scalar>& x,
+                                          std::size_t c, const Vec<Dim, Scalar>& normal) {
+  Scalar attachment = 0, total = 0;
+  for (Offset b = bonds.begin(c); b < bonds.end(c); ++b) {
+    if (!bonds.intact(b)) continue;
+    const Scalar w = bonds.weight(b);
+    const Vec<Dim, Scalar> d = x[static_cast<std::size_t>(bonds.neighbor(b))] - x[c];
+    attachment += w * d.dot(normal) / d.norm();
+    total += w;
+  }
+  // Sums over a mirrored neighbourhood agree to round-off whatever their order of summation:
+  // within a few hundred ulps of the total weight, A is a tie.
+  const Scalar tie = Scalar(256) * std::numeric_limits<Scalar>::epsilon() * total;
+  return attachment < -tie ? Vec<Dim, Scalar>(-normal) : normal;
 }
 
 }  // namespace MPSFSI_ABI

@@ -264,8 +264,8 @@ class ElasticSolver {
   }
 
   // Cuts the bonds across a crack plane through particle c with the given normal (eqs 34-35, see
-  // cut_bonds_across_plane): a notch or pre-crack, or what a failing particle does. Returns the
-  // number of bonds (pairs) cut.
+  // cut_bonds_across_plane): a notch or pre-crack. c keeps its bonds on the side the normal points
+  // to, whatever SolidParameters::crack_side says. Returns the number of bonds (pairs) cut.
   std::size_t impose_crack(std::size_t c, const vec_type& normal) {
     check_index(c, "impose_crack");
     if (!(normal.norm() > 0) || !normal.allFinite())
@@ -486,7 +486,7 @@ class ElasticSolver {
     const typename fracture_type::State state{
         set_, bonds_, stresses(), reference_, external_, fit,
         {p_.l0, context_.n0, Weight::value(p_.l0, p_.re()), context_.lame, p_.average_failure_stress},
-        p_.crack_half_width(), p_.re(), time_};
+        p_.crack_half_width(), p_.re(), time_, p_.crack_side};
     const bool cut = fracture_.apply(
         state, [this](std::size_t i) { return constraint_[i] == Constraint::prescribed; },
         [&](std::size_t i) { return contact_.touching(x, i); }, touched_, scratch_);

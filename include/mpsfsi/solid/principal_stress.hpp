@@ -84,9 +84,10 @@ Scalar largest_symmetric_eigenpair(const Mat<3, Scalar>& a, Vec<3, Scalar>& v) {
 // its unit eigenvector in `direction`, both in closed form (2D: Mohr's circle; 3D:
 // detail::largest_symmetric_eigenpair).
 // A principal direction has no sign, but the crack-plane rule (crack_plane.hpp) puts the cut on
-// the normal's - side, so the sign chooses which neighbour column a crack opens towards. Both
-// dimensions return the same convention: the first non-zero component is positive (n_x >= 0;
-// the 2D closed form gives it with theta in (-pi/2, pi/2]; the 3D vector is flipped to it).
+// the normal's - side, so with CrackSide::fixed_sign (the default) the sign chooses which
+// neighbour column a crack opens towards. Both dimensions return the same convention: the first
+// non-zero component is positive (n_x >= 0; the 2D closed form gives it with theta in
+// (-pi/2, pi/2]; the 3D vector is flipped to it).
 template <int Dim, class Scalar>
 Scalar max_principal_stress(const Mat<Dim, Scalar>& sigma, Vec<Dim, Scalar>& direction) {
   if constexpr (Dim == 2) {

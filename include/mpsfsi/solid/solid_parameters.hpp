@@ -17,6 +17,12 @@ inline namespace MPSFSI_ABI {
 // constants; plane stress replaces lambda by lambda* = 2 lambda mu / (lambda + 2 mu). Ignored in 3D.
 enum class PlaneModel { plane_strain, plane_stress };
 
+// Which side of its crack plane a failing particle keeps (docs/theory.md, section 5.3). The
+// principal direction has no sign. fixed_sign: the sign with n_x >= 0, so every failing particle
+// keeps its side towards +x. attachment: the side that holds it more firmly
+// (orient_toward_attachment, crack_plane.hpp), which a mirror image of the solid mirrors.
+enum class CrackSide { fixed_sign, attachment };
+
 // Lame constants of an isotropic material, eq 7, already reduced for plane stress when asked.
 template <class Scalar = double>
 struct LameConstants {
@@ -71,6 +77,11 @@ struct SolidParameters {
   // Cw = crack_width_ratio, 0 selecting sqrt(d)/2; l0/2 <= Cw l0 <= re.
   Scalar tensile_strength = std::numeric_limits<Scalar>::infinity();
   Scalar crack_width_ratio = 0;
+  // The side of its plane a failing particle keeps. fixed_sign breaks mirror symmetry (a
+  // symmetric double-notched plate cracks asymmetrically); attachment keeps it, but lets the
+  // crack of a bending beam zigzag along the particle column it runs in, and one of the five
+  // beams of the bending study does not break (docs/validation/fracture.md, mirror symmetry).
+  CrackSide crack_side = CrackSide::fixed_sign;
   // The stress the criterion reads: averaged over the particle and its intact bonds
   // (average_failure_stress), and, with a stress model that fits a second-order field
   // (CorrectedTotalLagrangian), sampled at the body's surface for surface particles: l0/2 along
