@@ -68,6 +68,13 @@ MirrorReport impact_double_notched_plate(double l0, double speed, double end_tim
   const auto key = [&](const Vec<2>& r) { return Key(std::lround(2 * r[0] / l0), std::lround(2 * r[1] / l0)); };
   std::map<Key, char> failed, cut;
   for (const auto& e : plate.failure_log()) failed[key(X[e.particle])] = 1;
+  // Every failure, for scripts/plot_mirror_symmetry.py (written in the test's working directory).
+  char name[96];
+  std::snprintf(name, sizeof name, "mirror_symmetry_%s_l0_%gmm_%gms.csv",
+                crack_side == CrackSide::attachment ? "attachment" : "fixed_sign", l0 * 1e3, speed);
+  CsvWriter failures(name, {"t", "x0", "y0", "sigma1_Pa", "nx", "ny"});
+  for (const auto& e : plate.failure_log())
+    failures.row({e.time, X[e.particle][0], X[e.particle][1], e.sigma1, e.normal[0], e.normal[1]});
   const auto& bonds = plate.bonds();
   for (std::size_t i = 0; i < set.size(); ++i)
     for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
