@@ -202,6 +202,68 @@ TEST_CASE_TEMPLATE("fracture.crack_plane: under pure bending the criterion reads
     }
 }
 
+// MaxPrincipalStress's upper bound lets the check skip sigma_1 where a particle cannot fail, and
+// the `failure_stress` field gets it later (FractureProcess::refresh_output). Against the same
+// criterion without the bound, on pure bending with sigma_f between the centre and the surface
+// stress (so the bottom face fails and the interior is screened out), both with the stress read at
+// the surface and averaged and read at the centres: the same cuts, the same failures, and the
+// same field to the bit, read through output() and through criterion_stresses().
+struct UnscreenedMaxPrincipal {
+  static constexpr bool enabled = true;
+  template <int Dim, class Scalar>
+  static Scalar principal(const Mat<Dim, Scalar>& sigma, Vec<Dim, Scalar>& direction) {
+    return MaxPrincipalStress::principal<Dim, Scalar>(sigma, direction);
+  }
+};
+template <int Dim>
+struct BrittleUnscreened : BrittleSolidPolicies<Dim> {
+  using failure = UnscreenedMaxPrincipal;
+};
+
+TEST_CASE_TEMPLATE("fracture.crack_plane: screening by the upper bound changes no check and no output", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  static_assert(detail::has_failure_upper_bound<MaxPrincipalStress, Dim>::value);
+  static_assert(!detail::has_failure_upper_bound<UnscreenedMaxPrincipal, Dim>::value);
+  PureBending<Dim> bending;
+  for (const bool averaged : {true, false}) {
+    auto params = bending.params;
+    params.tensile_strength = 0.5 * (bending.surface_stress() + bending.centre_stress());
+    params.average_failure_stress = averaged;
+    ElasticSolver<Dim, Brittle<Dim>> screened(bending.block, params);
+    ElasticSolver<Dim, BrittleUnscreened<Dim>> plain(bending.block, params);
+    bending.impose(screened);
+    bending.impose(plain);
+    std::size_t below_strength = 0;
+    for (int k = 0; k < 20; ++k) {
+      screened.step();
+      plain.step();
+      CAPTURE(averaged);
+      CAPTURE(k);
+      REQUIRE(screened.cut_bonds() == plain.cut_bonds());
+      REQUIRE(screened.failure_events() == plain.failure_events());
+      // Odd steps through output() (the field as written to files), even ones through the accessor.
+      std::vector<double> a;
+      if (k % 2)
+        screened.output().for_each_scalar_field([&](const std::string& name, const std::vector<double>& field) {
+          if (name == "failure_stress") a = field;
+        });
+      else
+        a = screened.criterion_stresses();
+      const auto& b = plain.criterion_stresses();
+      REQUIRE(a.size() == b.size());
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        differ += a[i] == b[i] ? 0 : 1;
+        below_strength += b[i] != 0 && b[i] < 0.5 * params.tensile_strength ? 1 : 0;
+      }
+      CHECK(differ == 0);
+    }
+    CHECK(screened.cut_bonds() > 0);
+    CHECK(below_strength > 0);  // particles the bound screens out
+  }
+}
+
 // A face that has carried an external force is not read at the surface afterwards: the load's
 // spikes stay in the field after it is gone (failure_stress.hpp). The bottom face carries a
 // negligible force for one step and none after; with sigma_f between the centre and the surface

@@ -198,6 +198,37 @@ TEST_CASE("fracture.failure_criteria: the 3D closed form agrees with an iterativ
   }
 }
 
+// MaxPrincipalStress::upper_bound, m + sqrt((d-1)/d) |dev|_F, is never below sigma_1 (random
+// tensors, and sigma_1 close to sigma_2), and equals it in 2D (Mohr's radius) and in 3D when the
+// two smaller principal stresses are equal (uniaxial tension), to within the bound's own
+// round-off margin, 1e-12 (|m| + |dev|_F) <= 2e-12 |sigma|_F.
+TEST_CASE("fracture.failure_criteria: the maximum principal stress's upper bound holds and is tight where it should be") {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-2e6, 2e6);
+  Vec<3> n3;
+  Vec<2> n2;
+  double worst_2d = 0, tightest_3d = 1e300;
+  for (int k = 0; k < 5000; ++k) {
+    const Mat<3> q = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
+    Vec<3> values(u(rng), u(rng), u(rng));
+    if (k % 3 == 1) values[1] = values[0] * (1 - 1e-9);
+    const Mat<3> s = q * values.asDiagonal() * q.transpose();
+    const double s1 = MaxPrincipalStress::principal<3, double>(s, n3);
+    const double bound = MaxPrincipalStress::upper_bound<3, double>(s);
+    CHECK(bound >= s1);
+    tightest_3d = std::min(tightest_3d, (bound - s1) / s.norm());
+    const Mat<2> s2 = s.topLeftCorner<2, 2>();
+    worst_2d = std::max(worst_2d, std::abs(MaxPrincipalStress::upper_bound<2, double>(s2) -
+                                           MaxPrincipalStress::principal<2, double>(s2, n2)) / s2.norm());
+  }
+  CHECK(worst_2d < 2.5e-12);
+  CHECK(tightest_3d >= 0);
+  // Uniaxial tension along a rotated axis: sigma_2 = sigma_3 = 0 and the bound is sigma_1.
+  const Mat<3> q = Eigen::AngleAxisd(0.4, Vec<3>(3, -1, 2).normalized()).toRotationMatrix();
+  const Mat<3> uniaxial = q * Vec<3>(1.5e6, 0, 0).asDiagonal() * q.transpose();
+  CHECK(MaxPrincipalStress::upper_bound<3, double>(uniaxial) == doctest::Approx(1.5e6).epsilon(2.5e-12));
+}
+
 TEST_CASE("fracture.failure_criteria: NoFailure never reaches any strength") {
   Vec<3> n;
   CHECK(NoFailure::principal<3, double>(Mat<3>::Identity() * 1e12, n) < -1e300);

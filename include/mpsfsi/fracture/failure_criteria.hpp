@@ -26,8 +26,12 @@ inline namespace MPSFSI_ABI {
 // must not modify shared state. Optionally (strength.hpp)
 //   void assign_strengths(const StrengthSetup&, std::vector<double>& strength) const;
 // sets each particle's strength once, when the solver is built; without it every particle has
-// SolidParameters::tensile_strength. The criteria below carry no parameters and cost what a
-// static function does.
+// SolidParameters::tensile_strength. And optionally
+//   template <int Dim, class Scalar> Scalar upper_bound(const Mat<Dim, Scalar>& sigma) const;  // or static
+// a value never below principal()'s, cheaper to compute: where it is below the particle's
+// strength the particle cannot fail, and the check leaves principal() for the output field
+// (FractureProcess). The criteria below carry no parameters and cost what a static function
+// does.
 
 // NoFailure, the null object (nothing ever fails), is solid/failure_slot.hpp's: the default of
 // every solid, with or without this folder.
@@ -39,6 +43,18 @@ struct MaxPrincipalStress {
   template <int Dim, class Scalar>
   static Scalar principal(const Mat<Dim, Scalar>& sigma, Vec<Dim, Scalar>& direction) {
     return max_principal_stress<Dim, Scalar>(sigma, direction);
+  }
+  // sigma_1 <= m + sqrt((d-1)/d) |s|_F, m = tr(sigma)/d and s = sigma - m I the deviator: the
+  // eigenvalues s_k of s sum to zero, and the largest of d numbers with zero sum and sum of
+  // squares |s|_F^2 is at most sqrt((d-1)/d) |s|_F (equality when the other d-1 are equal; in 2D
+  // the bound is Mohr's radius, exact). In 3D it costs a tenth of the eigen-decomposition. The
+  // last term covers the round-off of both evaluations.
+  template <int Dim, class Scalar>
+  static Scalar upper_bound(const Mat<Dim, Scalar>& sigma) {
+    const Scalar mean = sigma.trace() / Dim;
+    const Mat<Dim, Scalar> symmetric = Scalar(0.5) * (sigma + sigma.transpose());
+    const Scalar deviator = (symmetric - mean * Mat<Dim, Scalar>::Identity()).norm();
+    return mean + std::sqrt(Scalar(Dim - 1) / Dim) * deviator + Scalar(1e-12) * (std::abs(mean) + deviator);
   }
 };
 

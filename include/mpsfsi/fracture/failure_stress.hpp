@@ -83,11 +83,26 @@ class FailureStressReadout {
       }
     }
     const auto& sampled = at_surface ? surface_stress_ : point;
-    if (!s.average) return sampled;
+    if (!s.average) {
+      last_ = at_surface ? Last::surface : Last::point;
+      return sampled;
+    }
     average_pass(point, sampled, bonds, s.self_weight, at_surface, false, averaged_);
+    last_ = at_surface ? Last::smoothed : Last::averaged;
     if (!at_surface) return averaged_;
     average_pass(point, averaged_, bonds, s.self_weight, true, true, smoothed_);
     return smoothed_;
+  }
+
+  // The tensors the last read() returned, when they are the read-out's own (kept until the next
+  // read), or nullptr when it returned `point` itself.
+  const MatArray<Dim, double>* last_read() const {
+    switch (last_) {
+      case Last::surface: return &surface_stress_;
+      case Last::averaged: return &averaged_;
+      case Last::smoothed: return &smoothed_;
+      default: return nullptr;
+    }
   }
 
   // Checkpoints (io/checkpoint.hpp): what the first read fixed (normals, surface flags, bond
@@ -146,6 +161,8 @@ class FailureStressReadout {
     }
   }
 
+  enum class Last { point, surface, averaged, smoothed };
+  Last last_ = Last::point;  // what the last read() returned
   VecArray<Dim, double> normal_;  // outward normals at the first read (zero inside)
   std::vector<double> initial_weight_;  // w of every bond at the first read (0 if already cut)
   std::vector<std::uint8_t> on_surface_, read_outside_;

@@ -107,6 +107,12 @@ class FractureProcess {
     failing_.clear();
     const auto& strength = s.set.field(strength_);
     auto& read = s.set.field(failure_stress_);
+    // With the model's upper bound, a particle whose bound is below its strength cannot fail and
+    // its principal() is left for refresh_output(). That reads the tensors later, so only when
+    // they are the read-out's own: the stress field itself is recomputed after a cut.
+    deferred_ = false;
+    if constexpr (detail::has_failure_upper_bound<Failure, Dim>::value) deferred_ = readout_.last_read() != nullptr;
+    unevaluated_.resize(n);
     MPSFSI_OMP(parallel)
     {
       std::vector<Failing> mine;
@@ -114,7 +120,14 @@ class FractureProcess {
       for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
         const auto i = static_cast<std::size_t>(ii);
         read[i] = 0;
+        unevaluated_[i] = 0;
         if (fixed(i) || s.bonds.intact_count(i) == 0) continue;
+        if constexpr (detail::has_failure_upper_bound<Failure, Dim>::value) {
+          if (deferred_ && failure_.template upper_bound<Dim, double>(sigma[i]) < strength[i]) {
+            unevaluated_[i] = 1;
+            continue;
+          }
+        }
         Vec<Dim, double> direction;
         const double s1 = failure_.template principal<Dim, double>(sigma[i], direction);
         read[i] = s1;
@@ -145,12 +158,33 @@ class FractureProcess {
   const std::vector<FailureEvent<Dim>>& log() const { return log_; }
   double first_failure_time() const { return first_failure_time_; }
   const std::vector<double>& strengths(const ParticleSet<Dim>& set) const { return set.field(strength_); }
-  const std::vector<double>& criterion_stresses(const ParticleSet<Dim>& set) const { return set.field(failure_stress_); }
+  const std::vector<double>& criterion_stresses(ParticleSet<Dim>& set) {
+    refresh_output(set);
+    return set.field(failure_stress_);
+  }
+
+  // Fills the `failure_stress` field where the last check ruled failure out by the upper bound:
+  // principal() of the tensor that check read (ElasticSolver calls it before output and
+  // checkpoints). Until the next check, the read-out keeps those tensors.
+  void refresh_output(ParticleSet<Dim>& set) {
+    if (!deferred_) return;
+    const auto& sigma = *readout_.last_read();
+    auto& read = set.field(failure_stress_);
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(unevaluated_.size()); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (!unevaluated_[i]) continue;
+      Vec<Dim, double> direction;
+      read[i] = failure_.template principal<Dim, double>(sigma[i], direction);
+    }
+    deferred_ = false;
+  }
 
   // Checkpoints (io/checkpoint.hpp): the read-out's first-read data, the particles that have
   // carried an external force, and the record. The strengths are fields of the particle set.
   template <class Archive>
   void checkpoint_state(Archive& a) {
+    deferred_ = false;  // the field is complete in the archive (refresh_output came first)
     readout_.checkpoint_state(a);
     a.array(carried_external_);
     a.value(first_failure_time_);
@@ -176,6 +210,9 @@ class FractureProcess {
   FailureStressReadout<Dim> readout_;
   std::vector<std::uint8_t> carried_external_;  // has carried an external force (surface read-out)
   std::vector<Failing> failing_;
+  // Whether the last check left some particles' principal() out, and which.
+  bool deferred_ = false;
+  std::vector<std::uint8_t> unevaluated_;
   std::vector<FailureEvent<Dim>> log_;
   double first_failure_time_ = -1;
 };

@@ -29,6 +29,14 @@ struct has_failure_principal<F, Dim, Direction,
                                  std::declval<const Mat<Dim, double>&>(), std::declval<Direction>())))>>
     : std::true_type {};
 
+// The optional upper_bound(sigma) (failure_criteria.hpp).
+template <class F, int Dim, class = void>
+struct has_failure_upper_bound : std::false_type {};
+template <class F, int Dim>
+struct has_failure_upper_bound<F, Dim,
+                               std::void_t<decltype(double(std::declval<const F&>().template upper_bound<Dim, double>(
+                                   std::declval<const Mat<Dim, double>&>())))>> : std::true_type {};
+
 template <class F, class = void>
 struct names_assign_strengths : std::false_type {};
 template <class F>

@@ -324,9 +324,10 @@ class ElasticSolver {
   // fragment, body, constraint) brought up to date, ready for write_vtu. `fragment` labels the
   // connected pieces of the intact-bond graph (find_fragments): after fracture, colour by it to
   // see the pieces. With a failure model there are two more: `strength`, each particle's, and
-  // `failure_stress`, the value the criterion compared with it at the last step's check (read
-  // from the failure read-out's stress, not from `stress`; 0 where it was not checked: prescribed
-  // particles and particles with no intact bond).
+  // `failure_stress`, the criterion's value of the stress the last step's check read (from the
+  // failure read-out's stress, not from `stress`; 0 where it was not checked: prescribed
+  // particles and particles with no intact bond). Where the model's upper bound ruled failure
+  // out, that value is computed here (FractureProcess::refresh_output).
   const ParticleSet<Dim>& output() {
     stresses();
     auto& u = set_.field(displacement_);
@@ -340,6 +341,7 @@ class ElasticSolver {
       principal[i] = max_principal_stress<Dim, double>(sigma[i], direction);
     }
     set_.field(fragment_) = find_fragments(bonds_).label;
+    fracture_.refresh_output(set_);
     return set_;
   }
 
@@ -382,12 +384,12 @@ class ElasticSolver {
   double first_failure_time() const { return fracture_.first_failure_time(); }
   // Every failure in order: the crack path (reference_positions()[event.particle]) and history.
   const std::vector<FailureEvent<Dim>>& failure_log() const { return fracture_.log(); }
-  // The failure model object; each particle's strength and the value the criterion compared
-  // with it at the last step's check (the output fields `strength` and `failure_stress`; Pa;
-  // empty without a failure model).
+  // The failure model object; each particle's strength and the criterion's value of the stress
+  // the last step's check read (the output fields `strength` and `failure_stress`; Pa; empty
+  // without a failure model).
   const failure_type& failure_model() const { return fracture_.model(); }
   const std::vector<double>& strengths() const { return fracture_.strengths(set_); }
-  const std::vector<double>& criterion_stresses() const { return fracture_.criterion_stresses(set_); }
+  const std::vector<double>& criterion_stresses() { return fracture_.criterion_stresses(set_); }
 
   // Directed bonds evaluated per force evaluation (the benchmark's unit of work).
   std::size_t bond_evaluations_per_step() const { return bonds_.num_bonds(); }
@@ -401,6 +403,7 @@ class ElasticSolver {
   std::size_t checkpoint_particle_count() const { return set_.size(); }
   template <class Archive>
   void checkpoint_state(Archive& a) {
+    fracture_.refresh_output(set_);  // the `failure_stress` field complete before it is written
     set_.checkpoint_state(a);
     a.array(reference_);
     bonds_.checkpoint_state(a);
@@ -421,6 +424,7 @@ class ElasticSolver {
         external_.size() != n || force_.size() != n)
       detail::throw_invalid("ElasticSolver", "the checkpoint's arrays do not match its particle count");
     model_.checkpoint_restored(bonds_);
+    if (p_.bond_viscosity > 0) viscosity_.initialize(bonds_);
     stresses_current_ = false;
   }
 
@@ -498,6 +502,7 @@ class ElasticSolver {
     std::sort(touched_.begin(), touched_.end());
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
     model_.bonds_changed(bonds_, touched_);
+    viscosity_.bonds_changed(bonds_, touched_);
     stresses_current_ = false;
   }
 

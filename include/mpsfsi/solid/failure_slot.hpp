@@ -54,6 +54,7 @@ class NoFractureProcess {
   double first_failure_time() const { return -1; }
   const std::vector<double>& strengths(const ParticleSet<Dim>&) const { return none_; }
   const std::vector<double>& criterion_stresses(const ParticleSet<Dim>&) const { return none_; }
+  void refresh_output(const ParticleSet<Dim>&) const {}
   template <class Archive>
   void checkpoint_state(Archive&) {}
 
