@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
 """Renders the double-notched plate of verification.fracture.mirror_symmetry: where particles
-failed with the default side rule (fixed_sign) and with CrackSide::attachment, at l0 = 1 mm and
-32 m/s, coloured by the time of failure.
+failed with each cutting rule (CrackSide::fixed_sign, CrackSide::attachment and the default
+CrackSide::slab), at l0 = 1 mm and 32 m/s, coloured by the time of failure.
 
     python3 scripts/plot_mirror_symmetry.py build/tests/work [docs/images/fracture_mirror_symmetry.png]
 """
@@ -27,8 +27,9 @@ def main():
         sys.exit(__doc__)
     folder = sys.argv[1]
     out = sys.argv[2] if len(sys.argv) > 2 else "fracture_mirror_symmetry.png"
-    fig, axes = plt.subplots(1, 2, figsize=(10, 5.2), constrained_layout=True)
-    for ax, side, title in ((axes[0], "fixed_sign", "fixed_sign (default)"), (axes[1], "attachment", "attachment")):
+    fig, axes = plt.subplots(1, 3, figsize=(14, 5.0), constrained_layout=True)
+    rules = (("fixed_sign", "fixed_sign"), ("attachment", "attachment"), ("slab", "slab (default)"))
+    for ax, (side, title) in zip(axes, rules):
         try:
             x, y, t = read(f"{folder}/mirror_symmetry_{side}_l0_1mm_32ms.csv")
         except OSError as e:

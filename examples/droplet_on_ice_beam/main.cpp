@@ -50,6 +50,7 @@ struct Options {
   // Where the criterion reads the stress (SolidParameters::failure_stress_at_surface); the
   // default is the library's.
   std::string failure_stress = "surface";
+  std::string crack_side = "slab";  // SolidParameters::crack_side; the default is the library's
   double solid_courant = 0;     // structure step as a fraction of l0 / c; 0: the library's default
   double checkpoint_every = 0;  // s between checkpoints; 0: only on Ctrl-C / SIGTERM
   std::string restart;          // checkpoint to continue from (with --only)
@@ -147,6 +148,9 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
   if (fracture) {
     sp.tensile_strength = ice.tensile_strength();
     sp.failure_stress_at_surface = o.failure_stress == "surface";
+    sp.crack_side = o.crack_side == "fixed-sign"   ? CrackSide::fixed_sign
+                    : o.crack_side == "attachment" ? CrackSide::attachment
+                                                   : CrackSide::slab;
   }
   ElasticSolver<Dim, Policies> beam(beam_set, sp);
   for (auto i : scenes::select(beam_set, [](const Vec<Dim>& x) { return x[0] < 0; })) beam.clamp(i);
@@ -329,6 +333,9 @@ int main(int argc, char** argv) try {
   cli.add("--plane", o.plane, "2D plane model of the beam (2D only)")->check(one_of({"stress", "strain"}));
   cli.add("--failure-stress", o.failure_stress, "where the failure criterion reads the stress")
       ->check(one_of({"centre", "surface"}));
+  cli.add("--crack-side", o.crack_side,
+          "how a failing particle's crack plane divides its bonds (SolidParameters::crack_side)")
+      ->check(one_of({"slab", "fixed-sign", "attachment"}));
   cli.add("--solid-courant", o.solid_courant,
           "structure step dt_s = C l0 / c (c the P-wave speed); 0: the library's default (0.25)")
       ->check(mpsfsi_examples::non_negative());

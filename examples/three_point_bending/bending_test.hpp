@@ -75,7 +75,7 @@ struct Options {
   bool average_failure_stress = true;  // SolidParameters::average_failure_stress
   bool failure_stress_at_surface = true;  // SolidParameters::failure_stress_at_surface
   double contact_damping = 0;          // SolidParameters::contact_damping_ratio
-  mpsfsi::CrackSide crack_side = mpsfsi::CrackSide::fixed_sign;  // SolidParameters::crack_side
+  mpsfsi::CrackSide crack_side = mpsfsi::CrackSide::slab;  // SolidParameters::crack_side
   std::string out;          // output directory; empty: no files
   bool progress = false;
   // Checkpoints (examples/common/run_checkpoints.hpp): off unless `checkpoints` is set; then at
@@ -481,9 +481,10 @@ Result run(const IceBeamCase& c, const Options& o) {
     }
   }
   // The fracture surface of a broken beam, line by line: along every lattice row in x (one y,
-  // one z), skipping particles that are not in one of the two large pieces (chips: particles
-  // that lost every bond), it lies halfway between the last particle of one piece and the first
-  // of the other. A failure off that surface cuts bonds without separating the beam there.
+  // one z), skipping particles that are not in one of the two large pieces (chips, particles
+  // that lost every bond, and the strip of a CrackSide::slab crack's cut-out particles), it
+  // lies halfway between the last particle of one piece and the first of the other. A failure
+  // off that surface cuts bonds without separating the beam there.
   if (r.broken) {
     const auto is_large = [&](std::size_t i) {
       return fragments.sizes[static_cast<std::size_t>(fragments.label[i])] > beam_count / 10;

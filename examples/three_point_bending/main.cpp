@@ -21,7 +21,7 @@ struct Options {
   int dim = 2;
   std::string plane = "stress";
   std::string modulus = "material";
-  std::string crack_side = "fixed-sign";
+  std::string crack_side = "slab";
   bool point_stress = false, centre_stress = false, no_output = false;
   bending::Options run;
 };
@@ -48,9 +48,9 @@ int main(int argc, char** argv) try {
   cli.flag("--point-stress", o.point_stress, "the criterion reads each particle's own stress (not averaged over its bonds)");
   cli.flag("--centre-stress", o.centre_stress, "the criterion reads the stress at particle centres (not at the surface)");
   cli.add("--crack-side", o.crack_side,
-          "the side of its crack plane a failing particle keeps: towards +x, or the side that holds it more firmly "
-          "(mirror-symmetric)")
-      ->check(one_of({"fixed-sign", "attachment"}));
+          "how a failing particle's crack plane divides its bonds: the particle loses both sides of its slab and "
+          "becomes the crack, keeps its side towards +x, or keeps the side that holds it more firmly")
+      ->check(one_of({"slab", "fixed-sign", "attachment"}));
   cli.add("--contact-damping", o.run.contact_damping, "damping ratio of the contact's normal dashpot")
       ->check(mpsfsi_examples::non_negative());
   cli.add("--out", o.run.out, "output folder");
@@ -69,7 +69,9 @@ int main(int argc, char** argv) try {
   o.run.plane_model = o.plane == "strain" ? mpsfsi::PlaneModel::plane_strain : mpsfsi::PlaneModel::plane_stress;
   o.run.average_failure_stress = !o.point_stress;
   o.run.failure_stress_at_surface = !o.centre_stress;
-  o.run.crack_side = o.crack_side == "attachment" ? mpsfsi::CrackSide::attachment : mpsfsi::CrackSide::fixed_sign;
+  o.run.crack_side = o.crack_side == "attachment"   ? mpsfsi::CrackSide::attachment
+                     : o.crack_side == "fixed-sign" ? mpsfsi::CrackSide::fixed_sign
+                                                    : mpsfsi::CrackSide::slab;
   const std::string out = o.no_output ? std::string() : o.run.out;
   o.run.out = out;
   o.run.progress = true;

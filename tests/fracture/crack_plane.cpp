@@ -2,7 +2,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <utility>
+#include <vector>
 
 #include "mpsfsi/fracture/fracture_process.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
@@ -356,6 +359,65 @@ TEST_CASE_TEMPLATE("fracture.crack_plane: a failing particle stays with the side
     CAPTURE(trial);
     CHECK((chosen_image - mirrored_normal(chosen)).norm() < 1e-12);
   }
+}
+
+// CrackSide::slab: the failing particle's slab |(x - x_c) . n| < l0/2 loses its bonds across both
+// faces. On a lattice at rest with n along a lattice axis that is exactly what the one-sided rule
+// cuts with +n and with -n together; the cut does not depend on the sign of n, keeps the bonds
+// inside the slab, and a mirror image of the lattice in the plane gives the mirror-image cut.
+TEST_CASE_TEMPLATE("fracture.crack_plane: a slab failure cuts both faces of the failing particle's slab", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  const double l0 = 0.01, re = 2.1 * l0, mid = 0.035, half_width = std::sqrt(double(Dim)) / 2 * l0;
+  const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), Vec<Dim>::Constant(0.07), l0);
+  const auto& x = block.positions();
+  std::size_t c = x.size();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if ((x[i] - Vec<Dim>::Constant(mid)).norm() < 1e-9) c = i;
+  REQUIRE(c < x.size());
+  const auto fresh_bonds = [&] {
+    BondList<Dim> bonds;
+    bonds.template build<KoshizukaWeight>(x, std::vector<std::int32_t>(x.size(), 0), re);
+    return bonds;
+  };
+  std::vector<std::size_t> touched, scratch;
+  const auto cut_set = [&](const Vec<Dim>& n, double slab) {
+    BondList<Dim> bonds = fresh_bonds();
+    cut_bonds_across_plane(bonds, x, c, n, half_width, re, touched, scratch, slab);
+    std::vector<char> cut(bonds.num_bonds());
+    for (std::size_t b = 0; b < cut.size(); ++b) cut[b] = !bonds.intact(static_cast<Offset>(b));
+    return std::make_pair(cut, bonds);
+  };
+  const Vec<Dim> n = Vec<Dim>::UnitX();
+  const auto [slab, bonds] = cut_set(n, 0.5 * l0);
+  CHECK(slab == cut_set(Vec<Dim>(-n), 0.5 * l0).first);
+  const auto plus = cut_set(n, 0.0).first, minus = cut_set(Vec<Dim>(-n), 0.0).first;
+  std::size_t cut_count = 0;
+  for (std::size_t b = 0; b < slab.size(); ++b) {
+    CHECK(slab[b] == (plus[b] || minus[b]));
+    cut_count += slab[b];
+  }
+  CHECK(cut_count > 0);
+  // c keeps exactly its bonds inside its slab (its own column).
+  for (Offset b = bonds.begin(c); b < bonds.end(c); ++b) {
+    const double dx = x[static_cast<std::size_t>(bonds.neighbor(b))][0] - mid;
+    CHECK(bonds.intact(b) == (std::abs(dx) < 0.5 * l0));
+  }
+  // The mirror image in x = mid: bond (i, j) is cut exactly when its image is.
+  const auto image_of = [&](std::size_t i) {
+    Vec<Dim> p = x[i];
+    p[0] = 2 * mid - p[0];
+    for (std::size_t j = 0; j < x.size(); ++j)
+      if ((x[j] - p).norm() < 1e-9) return j;
+    return x.size();
+  };
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const std::size_t ii = image_of(i), jj = image_of(static_cast<std::size_t>(bonds.neighbor(b)));
+      REQUIRE(ii < x.size());
+      for (Offset e = bonds.begin(ii); e < bonds.end(ii); ++e)
+        if (static_cast<std::size_t>(bonds.neighbor(e)) == jj) CHECK(bonds.intact(b) == bonds.intact(e));
+    }
 }
 
 }

@@ -53,4 +53,39 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a particle's cut bonds weigh its ow
   CHECK(read_at_i(fresh, bonds) == doctest::Approx(1e6 * self / (self + w_left)).epsilon(1e-12));
 }
 
+// A neighbour cut out of the solid (failed with CrackSide::slab) leaves the average as a cut bond
+// does: its weight goes to the reading particle's own stress, so neither its stress nor its
+// relaxed state lowers or raises the read. Particle i carries a stress and its neighbour k
+// another; after k is cut out, i reads its own stress with k's weight added to its own.
+TEST_CASE_TEMPLATE("fracture.failure_stress: a cut-out neighbour weighs the particle's own stress", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  const double l0 = 0.01, re = 2.1 * l0;
+  const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), Vec<Dim>::Constant(0.07), l0);
+  const auto& x = block.positions();
+  std::size_t i = 0;
+  for (std::size_t p = 0; p < x.size(); ++p)
+    if ((x[p] - Vec<Dim>::Constant(0.035)).norm() < (x[i] - Vec<Dim>::Constant(0.035)).norm()) i = p;
+  BondList<Dim> bonds;
+  bonds.template build<KoshizukaWeight>(x, std::vector<std::int32_t>(x.size(), 0), re);
+  const auto k = static_cast<std::size_t>(bonds.neighbor(bonds.begin(i)));
+  const double w_k = bonds.weight(bonds.begin(i));
+  double all = 0;
+  for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) all += bonds.weight(b);
+
+  typename FailureStressReadout<Dim>::Settings settings;
+  settings.l0 = l0;
+  settings.self_weight = KoshizukaWeight::value(l0, re);
+  const double self = settings.self_weight;
+  MatArray<Dim, double> point(x.size(), Mat<Dim>::Zero());
+  point[i](0, 0) = 1e6;
+  point[k](0, 0) = 3e6;
+  const auto unloaded = [](std::size_t) { return false; };
+  FailureStressReadout<Dim> readout;
+  const auto read_at_i = [&] { return readout.read(point, x, x, bonds, nullptr, unloaded, settings)[i](0, 0); };
+  CHECK(read_at_i() == doctest::Approx((1e6 * self + 3e6 * w_k) / (self + all)).epsilon(1e-12));
+  readout.mark_cut_out(k, x.size());
+  CHECK(read_at_i() == doctest::Approx(1e6 * (self + w_k) / (self + all)).epsilon(1e-12));
+}
+
 }

@@ -25,6 +25,11 @@ inline namespace MPSFSI_ABI {
 //   stretched 48 %: sigma_1 3.6-3.8 MPa at the particles, sigma_f 1.14 MPa, and neither
 //   failed). Bonds already cut at the first read (an imposed notch) are not material and stay
 //   out.
+//   A particle cut out of the solid (failed with CrackSide::slab, crack_plane.hpp) has lost its
+//   bonds across both faces of its slab: its stress is that of a loose strip, not of material
+//   that holds the solid together, and averaged in it would lower the read of the particle ahead
+//   of the crack (three beams of the bending study then stay in one piece). Its bonds,
+//   intact or not, give their weight to the reading particle's own stress, as cut bonds do.
 // - At the surface (given a second-order fit, i.e. failure_stress_at_surface with the default
 //   stress model): a particle on the body's outer surface (outward normal n_i from the bonds at
 //   the first read, so imposed notches count and crack faces do not) reads its fitted field at
@@ -112,7 +117,15 @@ class FailureStressReadout {
     a.array(normal_);
     a.array(initial_weight_);
     a.array(on_surface_);
+    cut_out_.clear();  // FractureProcess marks them again from its record
   }
+
+  // Particle i has been cut out (see above); n: the particle count.
+  void mark_cut_out(std::size_t i, std::size_t n) {
+    cut_out_.resize(n, 0);
+    cut_out_[i] = 1;
+  }
+  std::size_t cut_out_marks() const { return cut_out_.size(); }
 
  private:
   // Surface detection threshold of structure_normals, and the cosine within which two surface
@@ -150,8 +163,8 @@ class FailureStressReadout {
         const double w = bonds.beta(b) == 0 ? 0.0 : initial_weight_[static_cast<std::size_t>(b)];
         const auto k = static_cast<std::size_t>(bonds.neighbor(b));
         if (along_face && !same_face(i, k)) continue;
-        if (w == 0) {
-          own += initial_weight_[static_cast<std::size_t>(b)];  // cut since the first read
+        if (w == 0 || (k < cut_out_.size() && cut_out_[k] != 0)) {
+          own += initial_weight_[static_cast<std::size_t>(b)];  // cut since the first read, or cut out
           continue;
         }
         sum += w * (along_face ? in[k] : point[k]);
@@ -167,6 +180,7 @@ class FailureStressReadout {
   std::vector<double> initial_weight_;  // w of every bond at the first read (0 if already cut)
   std::vector<std::uint8_t> on_surface_, read_outside_;
   MatArray<Dim, double> surface_stress_, averaged_, smoothed_;
+  std::vector<std::uint8_t> cut_out_;  // empty until the first CrackSide::slab failure
 };
 
 }  // namespace MPSFSI_ABI

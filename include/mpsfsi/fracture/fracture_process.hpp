@@ -37,9 +37,11 @@ struct BrittleSolidPolicies : SolidDefaults<Dim> {
 // section 5): after each step, the stress the criterion reads (failure_stress.hpp) at every
 // particle, eq 27 against the particle's strength, and for each failing particle, strongest first,
 // the bonds cut across its crack plane (crack_plane.hpp); the failures are logged. With
-// CrackSide::attachment the side of its plane each failing particle keeps is decided for all of
-// them from the bonds before any is cut (orient_toward_attachment), so the cuts of one check do
-// not depend on their order and a mirror image of the solid cracks as the mirror image. The solver
+// CrackSide::slab (default) a failing particle loses its bonds across both faces of its slab and
+// is cut out: it leaves the failure read-out of its neighbours. With CrackSide::attachment the
+// side of its plane each failing particle keeps is decided for all of them from the bonds before
+// any is cut (orient_toward_attachment), so the cuts of one check do not depend on their order
+// and a mirror image of the solid cracks as the mirror image. The solver
 // holds one and calls it; it owns the model object, the per-particle strengths (the `strength`
 // and `failure_stress` output fields) and the record.
 template <int Dim, class Failure>
@@ -83,7 +85,7 @@ class FractureProcess {
     const DeformationFit<Dim, double>* fit;   // the stress model's fit for surface reads, or nullptr
     readout_settings readout;
     double crack_half_width, re, time;
-    CrackSide crack_side = CrackSide::fixed_sign;
+    CrackSide crack_side = CrackSide::slab;
   };
 
   // Eq 27 at every particle that `fixed(i)` does not hold and that has an intact bond; each
@@ -103,6 +105,9 @@ class FractureProcess {
         if (!s.external[static_cast<std::size_t>(i)].isZero(0.0)) carried_external_[static_cast<std::size_t>(i)] = 1;
     }
     const auto loaded = [&](std::size_t i) { return touching(i) || carried_external_[i] != 0; };
+    const bool slab = s.crack_side == CrackSide::slab;
+    if (slab && readout_.cut_out_marks() != n)  // after a checkpoint was read: from the record
+      for (const auto& e : log_) readout_.mark_cut_out(e.particle, n);
     const auto& sigma = readout_.read(s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout);
     failing_.clear();
     const auto& strength = s.set.field(strength_);
@@ -144,9 +149,10 @@ class FractureProcess {
     });
     std::size_t cut = 0;
     for (const auto& f : failing_) {
-      const std::size_t cut_here =
-          cut_bonds_across_plane(s.bonds, x, f.particle, f.normal, s.crack_half_width, s.re, touched, scratch);
+      const std::size_t cut_here = cut_bonds_across_plane(s.bonds, x, f.particle, f.normal, s.crack_half_width, s.re,
+                                                          touched, scratch, slab ? 0.5 * s.readout.l0 : 0.0);
       if (cut_here == 0) continue;  // no intact bond across its plane: nothing breaks, nothing logged
+      if (slab) readout_.mark_cut_out(f.particle, n);
       cut += cut_here;
       log_.push_back({s.time, f.particle, f.sigma1, f.normal});
       if (first_failure_time_ < 0) first_failure_time_ = s.time;

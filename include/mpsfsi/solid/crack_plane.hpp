@@ -19,10 +19,15 @@ inline namespace MPSFSI_ABI {
 // lie on opposite sides of a plane through it, so eq 34 cannot tell which bonds the crack crosses).
 // The rule implemented: the crack plane goes through the failing particle c (r_c = x_c) with
 // normal n_c. An intact bond (i, j) is cut when
-//   (eq 34)  i and j lie on opposite sides of the plane, side(p) = [(x_p - x_c) . n_c >= 0]
+//   (eq 34)  i and j lie on different sides, with `slab_half_width` b = 0:
+//              side(p) = [(x_p - x_c) . n_c >= 0]
 //            (a particle on the plane, c itself included, counts on the + side, so c keeps the
 //            bonds on its + side and loses those to the - side: the sign of n_c matters;
-//            SolidParameters::crack_side says how a failing particle's is chosen), and
+//            SolidParameters::crack_side says how a failing particle's is chosen); with b > 0
+//            the plane is a slab, and a particle lies below it, in it or above it:
+//              side(p) = -1, 0, +1 as (x_p - x_c) . n_c <= -b, < b, >= b
+//            (CrackSide::slab, b = l0/2: c and its slab lose the bonds across both faces, and
+//            the sign of n_c does not matter), and
 //   (eq 35)  at least one of them is within Cw l0 of c measured along the plane,
 //            |(x_p - x_c) - ((x_p - x_c) . n_c) n_c| <= Cw l0,  Cw = sqrt(d)/2 by default.
 // The crack thus opens one particle wide around c and grows as its neighbours fail in turn.
@@ -32,10 +37,15 @@ inline namespace MPSFSI_ABI {
 template <int Dim, class Scalar>
 std::size_t cut_bonds_across_plane(BondList<Dim, Scalar>& bonds, const VecArray<Dim, Scalar>& x, std::size_t c,
                                    const Vec<Dim, Scalar>& normal, Scalar half_width, Scalar re,
-                                   std::vector<std::size_t>& touched, std::vector<std::size_t>& scratch) {
+                                   std::vector<std::size_t>& touched, std::vector<std::size_t>& scratch,
+                                   Scalar slab_half_width = 0) {
   const Vec<Dim, Scalar> xc = x[c];
   auto offset = [&](std::size_t p) { return Vec<Dim, Scalar>(x[p] - xc); };
-  auto side = [&](std::size_t p) { return offset(p).dot(normal) >= 0; };
+  auto side = [&](std::size_t p) {
+    const Scalar d = offset(p).dot(normal);
+    if (slab_half_width > 0) return d >= slab_half_width ? 1 : (d <= -slab_half_width ? -1 : 0);
+    return d >= 0 ? 1 : -1;
+  };
   auto along_plane = [&](std::size_t p) {
     const Vec<Dim, Scalar> d = offset(p);
     return (d - d.dot(normal) * normal).norm();
@@ -54,7 +64,7 @@ std::size_t cut_bonds_across_plane(BondList<Dim, Scalar>& bonds, const VecArray<
   std::size_t cut = 0;
   for (const std::size_t i : scratch) {
     if (offset(i).squaredNorm() > reach2 || along_plane(i) > half_width) continue;
-    const bool side_i = side(i);
+    const int side_i = side(i);
     for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
       const auto j = static_cast<std::size_t>(bonds.neighbor(b));
       if (!bonds.intact(b) || side(j) == side_i) continue;

@@ -28,8 +28,8 @@ struct NoFailure {
   }
 };
 
-// One particle failing (eq 27): when, which particle, sigma_1 and the crack-plane normal, pointing
-// to the side the particle stayed with (SolidParameters::crack_side).
+// One particle failing (eq 27): when, which particle, sigma_1 and the crack-plane normal (with a
+// one-sided SolidParameters::crack_side, pointing to the side the particle stayed with).
 template <int Dim>
 struct FailureEvent {
   double time = 0;

@@ -17,11 +17,13 @@ inline namespace MPSFSI_ABI {
 // constants; plane stress replaces lambda by lambda* = 2 lambda mu / (lambda + 2 mu). Ignored in 3D.
 enum class PlaneModel { plane_strain, plane_stress };
 
-// Which side of its crack plane a failing particle keeps (docs/theory.md, section 5.3). The
-// principal direction has no sign. fixed_sign: the sign with n_x >= 0, so every failing particle
-// keeps its side towards +x. attachment: the side that holds it more firmly
-// (orient_toward_attachment, crack_plane.hpp), which a mirror image of the solid mirrors.
-enum class CrackSide { fixed_sign, attachment };
+// How a failing particle's crack plane divides its bonds (docs/theory.md, section 5.3). The
+// principal direction has no sign. slab: the particle keeps neither side; it loses its bonds
+// across both faces of its own slab, |(x - x_c) . n_c| < l0/2, and is cut out: the crack is one
+// spacing wide, and no sign is used, so a mirror image of the solid cracks as the mirror image.
+// fixed_sign: the particle keeps its side towards +x (n_x >= 0). attachment: it keeps the side
+// that holds it more firmly (orient_toward_attachment, crack_plane.hpp).
+enum class CrackSide { slab, fixed_sign, attachment };
 
 // Lame constants of an isotropic material, eq 7, already reduced for plane stress when asked.
 template <class Scalar = double>
@@ -77,11 +79,12 @@ struct SolidParameters {
   // Cw = crack_width_ratio, 0 selecting sqrt(d)/2; l0/2 <= Cw l0 <= re.
   Scalar tensile_strength = std::numeric_limits<Scalar>::infinity();
   Scalar crack_width_ratio = 0;
-  // The side of its plane a failing particle keeps. fixed_sign breaks mirror symmetry (a
-  // symmetric double-notched plate cracks asymmetrically); attachment keeps it, but lets the
-  // crack of a bending beam zigzag along the particle column it runs in, and one of the five
-  // beams of the bending study does not break (docs/validation/fracture.md, mirror symmetry).
-  CrackSide crack_side = CrackSide::fixed_sign;
+  // How a failing particle's plane divides its bonds. slab (default) and attachment keep mirror
+  // symmetry; fixed_sign breaks it (a symmetric double-notched plate cracks asymmetrically), and
+  // attachment lets the crack of a bending beam zigzag along the particle column it runs in, so
+  // one of the five beams of the bending study does not break (docs/validation/fracture.md,
+  // mirror symmetry).
+  CrackSide crack_side = CrackSide::slab;
   // The stress the criterion reads: averaged over the particle and its intact bonds
   // (average_failure_stress), and, with a stress model that fits a second-order field
   // (CorrectedTotalLagrangian), sampled at the body's surface for surface particles: l0/2 along
