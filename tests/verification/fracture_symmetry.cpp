@@ -131,19 +131,20 @@ TEST_CASE("mirror symmetry: a double-notched plate under a symmetric impact crac
   CHECK(SolidParameters<2>().crack_side == CrackSide::slab);
   const MirrorReport fixed = impact_double_notched_plate(1e-3, 32.0, 60e-6, CrackSide::fixed_sign);
   CHECK(fixed.unmatched_failed > 0);
-  for (const auto& [l0, speed] : {std::pair{2e-3, 32.0}, std::pair{1e-3, 20.0}, std::pair{1e-3, 32.0}})
-  for (const CrackSide side : {CrackSide::slab, CrackSide::attachment}) {
-    CAPTURE(l0);
-    CAPTURE(speed);
-    CAPTURE(side_name(side));
-    const MirrorReport r = impact_double_notched_plate(l0, speed, 60e-6, side);
-    // Both notch tips cracked, and the cracks ran: at least five spacings from each tip.
-    CHECK(r.failed_left > 0);
-    CHECK(r.failed_right > 0);
-    CHECK(r.reach_left > 5 * l0);
-    CHECK(r.reach_right > 5 * l0);
-    CHECK(r.unmatched_failed == 0);
-    CHECK(r.unmatched_cut == 0);
+  for (const auto& [l0, speed] : {std::pair{2e-3, 32.0}, std::pair{1e-3, 20.0}, std::pair{1e-3, 32.0}}) {
+    for (const CrackSide side : {CrackSide::slab, CrackSide::attachment}) {
+      CAPTURE(l0);
+      CAPTURE(speed);
+      CAPTURE(side_name(side));
+      const MirrorReport r = impact_double_notched_plate(l0, speed, 60e-6, side);
+      // Both notch tips cracked, and the cracks ran: at least five spacings from each tip.
+      CHECK(r.failed_left > 0);
+      CHECK(r.failed_right > 0);
+      CHECK(r.reach_left > 5 * l0);
+      CHECK(r.reach_right > 5 * l0);
+      CHECK(r.unmatched_failed == 0);
+      CHECK(r.unmatched_cut == 0);
+    }
   }
 }
 
