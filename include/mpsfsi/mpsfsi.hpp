@@ -65,6 +65,7 @@
 #include "mpsfsi/core/filter_neighbors.hpp"
 #include "mpsfsi/scenes/dam_break.hpp"
 #include "mpsfsi/scenes/elastic_gate.hpp"
+#include "mpsfsi/scenes/floating_ice_beam.hpp"
 #include "mpsfsi/scenes/hydrostatic_plate.hpp"
 #include "mpsfsi/scenes/lattice.hpp"
 #include "mpsfsi/scenes/oscillating_plate.hpp"

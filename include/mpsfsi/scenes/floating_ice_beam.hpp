@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "mpsfsi/core/abi.hpp"
+#include "mpsfsi/core/error.hpp"
+#include "mpsfsi/core/particle_set.hpp"
+#include "mpsfsi/scenes/solid_block.hpp"
+#include "mpsfsi/scenes/tank.hpp"
+
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+namespace scenes {
+
+// A long ice beam floating freely on water in a 2D tank, loaded at its left end by a vertical
+// force P per unit width (docs/validation/fsi.md, open problems: water under a long structure). The water is the beam's
+// elastic foundation, k = rho_w g; a beam longer than a few 1/lambda behaves as semi-infinite, and
+// Hetenyi's solution (Beams on Elastic Foundation, 1946, section on the semi-infinite beam with
+// an end load) gives, with D the flexural rigidity per unit width and x from the loaded end:
+//   lambda = (k / (4 D))^(1/4),
+//   w(x)   = (2 P lambda / k) e^(-lambda x) cos(lambda x)        (downwards),
+//   M(x)   = -(P / lambda) e^(-lambda x) sin(lambda x),         largest at x = pi / (4 lambda),
+// where the top fibre is in tension; the beam fails where 6 |M| / h^2 reaches sigma_f:
+//   P_f = sigma_f h^2 lambda / (6 e^(-pi/4) sin(pi/4)) = 0.68 sigma_f (rho_w g h^5 / E)^(1/4)
+// (with D = E h^3 / 12), the breaking term of Croasdale's load on a sloping structure.
+//
+// Layout (y up): the tank's floor at y = 0, its left wall at x = 0; the beam [0, beam_length] x
+// [y_b, y_b + h] with its loaded end face against the left wall (the wall keeps the water off the
+// loaded end's top: with water beside it the end would be flooded once it dips below the
+// water line, which the foundation model leaves out); water under the beam up to y_b and, beyond
+// the far end, open water up to the beam's draft (to the nearest row). The tank is water_length
+// long, so the open water is water_length - beam_length.
+struct FloatingIceBeam {
+  double thickness = 0.04;          // h, m
+  double beam_length = 0;           // m; 0: 5 / lambda rounded up to whole spacings
+  double open_water = 0.3;          // m of free surface beyond the far end
+  double water_depth = 0.25;        // m of water under the beam
+  double youngs_modulus = 60e6;     // Pa
+  double poisson_ratio = 0.3;
+  double ice_density = 917;         // kg/m3
+  double tensile_strength = 30e3;   // sigma_f, Pa
+  double water_density = 1000;      // kg/m3
+  double gravity = 9.81;            // m/s2
+  bool plane_strain = false;        // the plane model of the 2D beam: D = E' h^3 / 12
+
+  // E' of the plane model: E in plane stress, E / (1 - nu^2) in plane strain.
+  double plane_modulus() const {
+    return plane_strain ? youngs_modulus / (1 - poisson_ratio * poisson_ratio) : youngs_modulus;
+  }
+  double flexural_rigidity() const { return plane_modulus() * std::pow(thickness, 3) / 12; }
+  double foundation_modulus() const { return water_density * gravity; }
+  double lambda() const { return std::pow(foundation_modulus() / (4 * flexural_rigidity()), 0.25); }
+  // Hetenyi's semi-infinite beam under P at x = 0, deflection positive downwards.
+  double deflection(double P, double x) const {
+    const double l = lambda();
+    return 2 * P * l / foundation_modulus() * std::exp(-l * x) * std::cos(l * x);
+  }
+  double moment(double P, double x) const {
+    const double l = lambda();
+    return -P / l * std::exp(-l * x) * std::sin(l * x);
+  }
+  double largest_moment_position() const { return std::acos(-1.0) / (4 * lambda()); }
+  // The end load at which the top fibre at x = pi / (4 lambda) reaches sigma_f.
+  double failure_load() const {
+    const double x = largest_moment_position();
+    return tensile_strength * thickness * thickness / (6 * std::abs(moment(1.0, x)));
+  }
+  double draft() const { return ice_density / water_density * thickness; }
+
+  // Lengths rounded to whole spacings, the beam's bottom y_b on the water's lattice (a whole
+  // number of spacings above the floor).
+  double beam_length_for(double l0) const {
+    const double L = beam_length > 0 ? beam_length : 5 / lambda();
+    return std::ceil(L / l0 - 1e-9) * l0;
+  }
+  double beam_bottom(double l0) const { return std::round(water_depth / l0) * l0; }
+  double tank_length(double l0) const { return beam_length_for(l0) + std::round(open_water / l0) * l0; }
+  // The open water's surface: the beam's draft above y_b, to the nearest row.
+  double open_water_level(double l0) const { return beam_bottom(l0) + std::round(draft() / l0) * l0; }
+
+  // The water and the tank (one wall layer, `dummy_layers` behind it) up to two spacings above
+  // the beam's top.
+  ParticleSet<2> fluid_particles(double l0, int dummy_layers = 4) const {
+    check(l0);
+    const double yb = beam_bottom(l0), L = beam_length_for(l0), T = tank_length(l0);
+    ParticleSet<2> set;
+    add_block(set, Vec<2>(0, 0), Vec<2>(L, yb), l0, ParticleKind::fluid);
+    add_block(set, Vec<2>(L, 0), Vec<2>(T, open_water_level(l0)), l0, ParticleKind::fluid);
+    add_tank(set, Vec<2>(T, yb + thickness + 2 * l0), l0, dummy_layers);
+    return set;
+  }
+
+  // The beam, [0, L] x [y_b, y_b + h]; `end_column` lists the particles of the loaded end's
+  // column (x < l0).
+  ParticleSet<2> beam_particles(double l0, std::vector<std::size_t>& end_column) const {
+    check(l0);
+    const double yb = beam_bottom(l0);
+    auto set = material_block<2>(Vec<2>(0, yb), Vec<2>(beam_length_for(l0), yb + thickness), l0);
+    end_column = select(set, [&](const Vec<2>& x) { return x[0] < l0; });
+    return set;
+  }
+
+ private:
+  void check(double l0) const {
+    if (!(l0 > 0) || !(thickness >= 2 * l0) || std::abs(thickness / l0 - std::round(thickness / l0)) > 1e-6)
+      detail::throw_invalid("scenes::FloatingIceBeam",
+                            "l0 must be positive and divide the thickness into at least two whole rows");
+    if (!(water_depth >= 4 * l0) || !(open_water >= 4 * l0))
+      detail::throw_invalid("scenes::FloatingIceBeam", "the water depth and the open water need at least 4 spacings");
+  }
+};
+
+}  // namespace scenes
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "mpsfsi/scenes/floating_ice_beam.hpp"
+
+using namespace mpsfsi;
+
+TEST_SUITE("scenes") {
+
+// Hetenyi's semi-infinite beam on a Winkler foundation (scenes/floating_ice_beam.hpp): the
+// deflection must satisfy the beam equation D w'''' + k w = 0, carry the end load through the
+// foundation (integral of k w = P), have M = -D w'' with M(0) = 0 and a shear of P at the end,
+// and the largest moment where the header says. Derivatives by central differences of step
+// 1e-3 / lambda: truncation error about 1e-6 relative, hence the 1e-4 bounds.
+TEST_CASE("scenes.floating_ice_beam: the reference solution solves the beam on an elastic foundation") {
+  scenes::FloatingIceBeam s;
+  const double P = 20, D = s.flexural_rigidity(), k = s.foundation_modulus(), lambda = s.lambda();
+  CHECK(4 * D * std::pow(lambda, 4) == doctest::Approx(k).epsilon(1e-12));
+  const double h = 1e-3 / lambda, w0 = s.deflection(P, 0);
+  CHECK(w0 == doctest::Approx(2 * P * lambda / k).epsilon(1e-12));
+  auto w = [&](double x) { return s.deflection(P, x); };
+  for (double x : {0.3 / lambda, 1.0 / lambda, 2.0 / lambda, 3.5 / lambda}) {
+    const double d4 = (w(x + 2 * h) - 4 * w(x + h) + 6 * w(x) - 4 * w(x - h) + w(x - 2 * h)) / std::pow(h, 4);
+    CHECK(std::abs(D * d4 + k * w(x)) <= 1e-4 * k * w0);
+    const double d2 = (w(x + h) - 2 * w(x) + w(x - h)) / (h * h);
+    CHECK(std::abs(s.moment(P, x) + D * d2) <= 1e-4 * P / lambda);
+  }
+  CHECK(s.moment(P, 0) == 0);
+  const double shear = (s.moment(P, h) - s.moment(P, 0)) / h;  // dM/dx at the end
+  CHECK(std::abs(shear + P) <= 1e-3 * P);
+  // The foundation carries the load: integral of k w over [0, 40 / lambda] (trapezoids).
+  double integral = 0;
+  const int n = 40000;
+  const double dx = 40 / lambda / n;
+  for (int i = 0; i < n; ++i) integral += 0.5 * dx * k * (w(i * dx) + w((i + 1) * dx));
+  CHECK(integral == doctest::Approx(P).epsilon(1e-6));
+  // |M| is largest at pi / (4 lambda).
+  double best = 0, at = 0;
+  for (int i = 0; i <= 4000; ++i) {
+    const double x = i * 1e-3 / lambda;
+    if (std::abs(s.moment(P, x)) > best) best = std::abs(s.moment(P, x)), at = x;
+  }
+  CHECK(std::abs(at - s.largest_moment_position()) <= 1e-3 / lambda);
+}
+
+// P_f = 0.68 sigma_f (rho_w g h^5 / E)^(1/4) in plane stress, Croasdale's breaking term: the
+// exact coefficient is 3^(1/4) sqrt(2) e^(pi/4) / 6 = 0.6804.
+TEST_CASE("scenes.floating_ice_beam: the failure load is Croasdale's breaking term") {
+  scenes::FloatingIceBeam s;
+  const double croasdale = s.tensile_strength *
+                           std::pow(s.water_density * s.gravity * std::pow(s.thickness, 5) / s.youngs_modulus, 0.25);
+  CHECK(s.failure_load() / croasdale == doctest::Approx(0.6804).epsilon(1e-4));
+  // At P_f the top fibre at pi / (4 lambda) carries sigma_f: 6 |M| / h^2.
+  const double M = s.moment(s.failure_load(), s.largest_moment_position());
+  CHECK(6 * std::abs(M) / (s.thickness * s.thickness) == doctest::Approx(s.tensile_strength).epsilon(1e-12));
+  // Plane strain stiffens the beam by 1 / (1 - nu^2): lambda falls by its fourth root.
+  scenes::FloatingIceBeam strain = s;
+  strain.plane_strain = true;
+  CHECK(strain.lambda() / s.lambda() ==
+        doctest::Approx(std::pow(1 - s.poisson_ratio * s.poisson_ratio, 0.25)).epsilon(1e-12));
+}
+
+TEST_CASE("scenes.floating_ice_beam: particles on one lattice, the beam clear of the water") {
+  scenes::FloatingIceBeam s;
+  const double l0 = s.thickness / 8;
+  std::vector<std::size_t> end_column;
+  const auto beam = s.beam_particles(l0, end_column);
+  const auto water = s.fluid_particles(l0);
+  REQUIRE(end_column.size() == 8);
+  for (auto i : end_column) CHECK(beam.positions()[i][0] == doctest::Approx(l0 / 2));
+  const double L = s.beam_length_for(l0);
+  CHECK(L >= 5 / s.lambda());
+  CHECK(L < 5 / s.lambda() + l0);
+  CHECK(beam.size() == static_cast<std::size_t>(std::lround(L / l0)) * 8);
+  // No water or wall particle closer than l0 to a beam particle, and every water particle in
+  // the tank, below the beam or in the open water at most the rounded draft above y_b.
+  double closest = 1e300;
+  const double yb = s.beam_bottom(l0), level = s.open_water_level(l0);
+  CHECK(std::abs(level - yb - s.draft()) <= l0 / 2);
+  for (std::size_t i = 0; i < water.size(); ++i) {
+    const auto& x = water.positions()[i];
+    for (std::size_t j = 0; j < beam.size(); j += 7) closest = std::min(closest, (x - beam.positions()[j]).norm());
+    if (water.kinds()[i] != ParticleKind::fluid) continue;
+    CHECK(x[0] > 0);
+    CHECK(x[0] < s.tank_length(l0));
+    CHECK(x[1] < (x[0] < L ? yb : level));
+  }
+  CHECK(closest >= l0 * (1 - 1e-9));
+}
+
+TEST_CASE("scenes.floating_ice_beam: spacings that do not fit are refused") {
+  scenes::FloatingIceBeam s;
+  std::vector<std::size_t> end_column;
+  CHECK_THROWS_AS(s.beam_particles(0.003, end_column), InvalidInput);  // 0.04 / 0.003 is not whole
+  CHECK_THROWS_AS(s.fluid_particles(0.03), InvalidInput);              // one row through the thickness
+  s.water_depth = 0.01;
+  CHECK_THROWS_AS(s.fluid_particles(0.005), InvalidInput);             // two rows of water
+}
+
+}  // TEST_SUITE
