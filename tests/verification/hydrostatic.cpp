@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "mpsfsi/fluid/fluid_solver.hpp"
+#include "mpsfsi/scenes/floating_ice_beam.hpp"
 #include "mpsfsi/scenes/tank.hpp"
 #include "support/tolerance.hpp"
 
@@ -106,9 +108,73 @@ void run_hydrostatic(double width, double depth, double l0, double settle, doubl
   CHECK(test::within_relative(surface_height, depth, 0.01));
 }
 
+// Water under a fixed lid: the floating ice beam's water (scenes::FloatingIceBeam at l0 = 10 mm,
+// 0.25 m deep, 1.5 m of lid, open water only beyond the lid's far end) with the beam's particles
+// laid out as the FSI coupler lays out a structure (surface rows wall, the rest dummy; the end
+// against the tank wall covered, so dummy). At rest the lid's wall particles carry
+// rho g (level - y) with `level` the open water's surface. Returns the mean lid load over
+// [settle, end] relative to that, and how many steps had a lid particle at the free surface.
+struct LidResult {
+  double load_ratio = 0;
+  int steps_parted = 0, steps = 0;
+};
+
+LidResult water_under_lid(double lid_length, double l0, double settle, double end, double dt) {
+  scenes::FloatingIceBeam scene;
+  scene.beam_length = lid_length;
+  scene.thickness = 8 * l0;
+  auto set = scene.fluid_particles(l0);
+  std::vector<std::size_t> end_column;
+  const auto lid = scene.beam_particles(l0, end_column);
+  const double yb = scene.beam_bottom(l0), top = yb + scene.thickness, L = scene.beam_length_for(l0);
+  const std::size_t first = set.size();
+  for (const auto& x : lid.positions()) {
+    const bool surface = x[1] < yb + l0 || x[1] > top - l0 || x[0] > L - l0;
+    set.add(x, surface ? ParticleKind::wall : ParticleKind::dummy);
+  }
+  FluidParameters<2> p;
+  p.l0 = l0;
+  p.dt = dt;
+  FluidSolver<2> solver(std::move(set), p);
+  const double rho_g = p.density * p.gravity.norm();
+  const double hydrostatic = rho_g * (scene.open_water_level(l0) - (yb + 0.5 * l0)) * L;  // per unit width
+  LidResult r;
+  double load_sum = 0;
+  while (solver.time() < end - 1e-9) {
+    solver.step();
+    if (solver.time() < settle - 1e-9) continue;
+    const auto& ps = solver.particles();
+    double load = 0;
+    bool parted = false;
+    for (std::size_t i = first; i < ps.size(); ++i) {
+      if (ps.kinds()[i] != ParticleKind::wall || std::abs(ps.positions()[i][1] - (yb + 0.5 * l0)) > 1e-9) continue;
+      load += solver.pressure()[i] * l0;
+      parted = parted || solver.free_surface()[i] != 0;
+    }
+    load_sum += load;
+    r.steps_parted += parted ? 1 : 0;
+    ++r.steps;
+  }
+  r.load_ratio = load_sum / r.steps / hydrostatic;
+  return r;
+}
+
 }  // namespace
 
 TEST_SUITE("verification.fluid") {
+
+// A known limitation (docs/validation/fsi.md, open problems: water under a long structure): the
+// water parts from the lid within about 0.1 s. What floating ice needs: the lid's mean load
+// within the open tank's 3 % of hydrostatic (above; the reference is taken at the wall row's own
+// height) and no lid particle at the free surface. Marked should_fail: it passes the suite while
+// the limitation stands, and fails it once the water holds, to be turned into a plain test.
+TEST_CASE("verification.fluid: water under a lid stays hydrostatic (known limitation)" * doctest::should_fail()) {
+  const auto r = water_under_lid(1.5, 0.01, 0.05, 0.3, 2e-3);
+  MESSAGE("water under a 1.5 m lid, l0 = 10 mm: mean lid load over 0.05-0.3 s / hydrostatic = " << r.load_ratio
+          << ", steps with a lid particle at the free surface: " << r.steps_parted << " of " << r.steps);
+  CHECK(test::within_relative(r.load_ratio, 1.0, 0.03));
+  CHECK(r.steps_parted == 0);
+}
 
 TEST_CASE("verification.fluid: hydrostatic tank 2D") {
   // Tolerance 3 % of rho g H: the analytic pressure, with room for the known error sources. P = 0
