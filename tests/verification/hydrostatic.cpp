@@ -2,6 +2,7 @@
 // Hydrostatic tank: a water column at rest in an open tank, against rho g (H - y).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -16,7 +17,8 @@ using namespace mpsfsi;
 namespace {
 
 template <int Dim, class Policies = FluidDefaults<Dim>>
-void run_hydrostatic(double width, double depth, double l0, double settle, double average, double dt) {
+void run_hydrostatic(double width, double depth, double l0, double settle, double average, double dt,
+                     WallCondition walls = WallCondition::wall_rows) {
   ParticleSet<Dim> set;
   Vec<Dim> tank = Vec<Dim>::Constant(width);
   tank[Dim - 1] = 1.5 * depth;
@@ -27,6 +29,7 @@ void run_hydrostatic(double width, double depth, double l0, double settle, doubl
   FluidParameters<Dim> p;
   p.l0 = l0;
   p.dt = dt;
+  p.wall_condition = walls;
   FluidSolver<Dim, Policies> solver(std::move(set), p);
 
   solver.advance_to(settle);
@@ -112,14 +115,16 @@ void run_hydrostatic(double width, double depth, double l0, double settle, doubl
 // 0.25 m deep, 1.5 m of lid, open water only beyond the lid's far end) with the beam's particles
 // laid out as the FSI coupler lays out a structure (surface rows wall, the rest dummy; the end
 // against the tank wall covered, so dummy). At rest the lid's wall particles carry
-// rho g (level - y) with `level` the open water's surface. Returns the mean lid load over
-// [settle, end] relative to that, and how many steps had a lid particle at the free surface.
+// rho g (level - y) with `level` the open water's surface. Over [settle, window]: the mean lid
+// load relative to that, and the steps with a lid particle at the free surface; over the whole
+// run (to `end`): the first time a lid particle is at the free surface and the fastest fluid.
 struct LidResult {
-  double load_ratio = 0;
+  double load_ratio = 0, first_parted = -1, fastest = 0;
   int steps_parted = 0, steps = 0;
 };
 
-LidResult water_under_lid(double lid_length, double l0, double settle, double end, double dt) {
+LidResult water_under_lid(double lid_length, double l0, double settle, double window, double end, double dt,
+                          WallCondition walls) {
   scenes::FloatingIceBeam scene;
   scene.beam_length = lid_length;
   scene.thickness = 8 * l0;
@@ -135,6 +140,7 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double en
   FluidParameters<2> p;
   p.l0 = l0;
   p.dt = dt;
+  p.wall_condition = walls;
   FluidSolver<2> solver(std::move(set), p);
   const double rho_g = p.density * p.gravity.norm();
   const double hydrostatic = rho_g * (scene.open_water_level(l0) - (yb + 0.5 * l0)) * L;  // per unit width
@@ -142,15 +148,18 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double en
   double load_sum = 0;
   while (solver.time() < end - 1e-9) {
     solver.step();
-    if (solver.time() < settle - 1e-9) continue;
     const auto& ps = solver.particles();
     double load = 0;
     bool parted = false;
-    for (std::size_t i = first; i < ps.size(); ++i) {
-      if (ps.kinds()[i] != ParticleKind::wall || std::abs(ps.positions()[i][1] - (yb + 0.5 * l0)) > 1e-9) continue;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (ps.kinds()[i] == ParticleKind::fluid) r.fastest = std::max(r.fastest, ps.velocities()[i].norm());
+      if (i < first || ps.kinds()[i] != ParticleKind::wall || std::abs(ps.positions()[i][1] - (yb + 0.5 * l0)) > 1e-9)
+        continue;
       load += solver.pressure()[i] * l0;
       parted = parted || solver.free_surface()[i] != 0;
     }
+    if (parted && r.first_parted < 0) r.first_parted = solver.time();
+    if (solver.time() < settle - 1e-9 || solver.time() > window + 1e-9) continue;
     load_sum += load;
     r.steps_parted += parted ? 1 : 0;
     ++r.steps;
@@ -169,7 +178,7 @@ TEST_SUITE("verification.fluid") {
 // height) and no lid particle at the free surface. Marked should_fail: it passes the suite while
 // the limitation stands, and fails it once the water holds, to be turned into a plain test.
 TEST_CASE("verification.fluid: water under a lid stays hydrostatic (known limitation)" * doctest::should_fail()) {
-  const auto r = water_under_lid(1.5, 0.01, 0.05, 0.3, 2e-3);
+  const auto r = water_under_lid(1.5, 0.01, 0.05, 0.3, 0.3, 2e-3, WallCondition::wall_rows);
   MESSAGE("water under a 1.5 m lid, l0 = 10 mm: mean lid load over 0.05-0.3 s / hydrostatic = " << r.load_ratio
           << ", steps with a lid particle at the free surface: " << r.steps_parted << " of " << r.steps);
   CHECK(test::within_relative(r.load_ratio, 1.0, 0.03));
@@ -181,6 +190,23 @@ TEST_CASE("verification.fluid: hydrostatic tank 2D") {
   // is imposed on the surface particles, half a spacing below the true surface (l0 / (2 H) = 1.25 %
   // here), and the time average leaves some pressure noise. Measured 0.58 % (docs/validation/fluid.md).
   run_hydrostatic<2>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4);
+}
+
+TEST_CASE("verification.fluid: hydrostatic tank 2D with Neumann walls") {
+  // The same case and tolerances with WallCondition::neumann.
+  run_hydrostatic<2>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann);
+}
+
+// With WallCondition::neumann the water stays on the lid over the same window (no lid particle at
+// the free surface; the default walls: 96 of 126 steps). The mean load is reported, not asserted:
+// it is not within 3 %. The run goes on to 0.6 s to report when the water parts from the lid, as
+// a flow grows around the lid's far end (docs/validation/fsi.md, open problems).
+TEST_CASE("verification.fluid: water under a lid with Neumann walls: the water stays on the lid") {
+  const auto r = water_under_lid(1.5, 0.01, 0.05, 0.3, 0.6, 2e-3, WallCondition::neumann);
+  MESSAGE("Neumann walls: water under a 1.5 m lid, l0 = 10 mm: mean lid load over 0.05-0.3 s / hydrostatic = "
+          << r.load_ratio << ", steps with a lid particle at the free surface: " << r.steps_parted << " of " << r.steps
+          << "; over 0-0.6 s: first parting at t = " << r.first_parted << " s, fastest fluid " << r.fastest << " m/s");
+  CHECK(r.steps_parted == 0);
 }
 
 TEST_CASE("verification.fluid: hydrostatic tank 3D") {

@@ -23,6 +23,18 @@ enum class NegativePressure { clamp_to_zero, keep };
 // left out with P = 0, under either setting, and not counted.
 enum class EnclosedRegion { error, zero_pressure };
 
+// The wall condition of the PPE (docs/theory.md, section 2.8).
+//   wall_rows   the paper's: wall particles are unknowns of the PPE with eq 11's source, the
+//               divergence of u* taken over fluid and wall neighbours; dummy particles are left
+//               out of the PPE. Holds water on a floor, but water under a ceiling (the underside
+//               of a floating body) parts from it.
+//   neumann     dummy particles enter every row's Laplacian with a ghost pressure, the row's own
+//               pressure extended along the wall's Neumann condition
+//               grad P = rho g_t + (rho/dt) ((u*_f - u_wall) . n) n  (n towards the dummies),
+//               the divergence of u* is taken over fluid neighbours only, and wall rows have
+//               no divergence source: the impermeability comes from the ghosts alone.
+enum class WallCondition { wall_rows, neumann };
+
 // Physical and numerical parameters of FluidSolver. Lengths in m, times in s, SI throughout.
 // Radii are given as multiples of l0 (docs/theory.md, section 1.2: KO96 use 2.1 l0 for density and
 // gradient, 4.0 l0 for the Laplacian; a widely used open code 2.1 / 3.1).
@@ -43,6 +55,7 @@ struct FluidParameters {
   // drives them unstable (seen in the hydrostatic tank).
   bool density_term_compression_only = true;
   Scalar surface_beta = Scalar(0.97);       // free surface where n < beta n0
+  WallCondition wall_condition = WallCondition::wall_rows;
   NegativePressure negative_pressure = NegativePressure::clamp_to_zero;
   EnclosedRegion enclosed_region = EnclosedRegion::error;
   // Time step: fixed when dt > 0, else automatic from the limits below, capped at max_dt when

@@ -25,6 +25,7 @@
 #include "mpsfsi/fluid/policy_checks.hpp"
 #include "mpsfsi/fluid/ssor_cg.hpp"
 #include "mpsfsi/fluid/ppe.hpp"
+#include "mpsfsi/kernels/detail/pair.hpp"
 #include "mpsfsi/kernels/divergence.hpp"
 #include "mpsfsi/kernels/gradient.hpp"
 #include "mpsfsi/kernels/gradient_correction.hpp"
@@ -149,16 +150,20 @@ class FluidSolver {
     timings_.predictor = lap_time(tick);
 
     // PPE source (eq 11) over fluid and wall particles, assembled and solved.
-    divergence<Weight>(x, list_pw_, u_star_, c_grad_, NoGradientCorrection<Dim, double>{}, div_);
-    source_.resize(n);
+    const bool neumann = p_.wall_condition == WallCondition::neumann;
+    divergence<Weight>(x, neumann ? list_ff_ : list_pw_, u_star_, c_grad_, NoGradientCorrection<Dim, double>{}, div_);
     const double rho = p_.density;
+    if (neumann) neumann_ghost_gradients(dt);
+    source_.resize(n);
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
       const double deficit = p_.density_term_compression_only ? std::min(c_n_.n0 - nd[i], 0.0) : c_n_.n0 - nd[i];
-      source_[i] = rho / dt * div_[i] + p_.gamma * rho / (dt * dt) * deficit / c_n_.n0;
+      const double divergence_term = neumann && kind[i] != ParticleKind::fluid ? 0.0 : rho / dt * div_[i];
+      source_[i] = divergence_term + p_.gamma * rho / (dt * dt) * deficit / c_n_.n0;
     }
     const bool leave_out = p_.enclosed_region == EnclosedRegion::zero_pressure;
-    ppe_.assemble(x, kind, surface_, list_all_, c_lap_, source_, a_, b_, leave_out);  // skips dummy neighbours
+    // Skips dummy neighbours, or takes them as ghosts (WallCondition::neumann).
+    ppe_.assemble(x, kind, surface_, list_all_, c_lap_, source_, a_, b_, leave_out, neumann ? &ghost_gradient_ : nullptr);
     if (ppe_.enclosed_fluid() > 0) {  // wall-only enclosed regions are left out silently
       if (!leave_out) {
         const auto i = static_cast<std::size_t>(*std::find_if(
@@ -338,8 +343,55 @@ class FluidSolver {
     } else {
       filter_neighbors(list_all_, in_ppe, list_pw_);
     }
+    if (p_.wall_condition == WallCondition::neumann)
+      filter_neighbors(list_pw_, [&](Index j) { return kind[static_cast<std::size_t>(j)] == ParticleKind::fluid; },
+                       list_ff_);
   }
   const NeighborList& short_all() const { return short_lists_ ? short_all_ : list_all_; }
+
+  // WallCondition::neumann (fluid_parameters.hpp): for each fluid or wall particle with dummy
+  // neighbours, the pressure gradient its ghosts follow, G = rho g_t + (rho/dt) ((u*_f - u_w) . n) n,
+  // the wall's Neumann condition: n points to the dummies (the weighted sum of their offsets),
+  // u_w is their weighted mean velocity, u*_f the particle's own u* (fluid) or the weighted mean
+  // u* of its fluid neighbours (wall), and g_t gravity along the wall, so that the ghosts of a
+  // fluid at rest are hydrostatic.
+  void neumann_ghost_gradients(double dt) {
+    const auto& x = set_.positions();
+    const auto& u = set_.velocities();
+    const auto& kind = set_.kinds();
+    const double rho = p_.density;
+    ghost_gradient_.resize(x.size());
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(x.size()); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      vec_type towards = vec_type::Zero(), u_wall = vec_type::Zero(), u_fluid = vec_type::Zero();
+      double w_wall = 0, w_fluid = 0;
+      if (kind[i] != ParticleKind::dummy)
+        for (Offset k = list_all_.begin(i); k < list_all_.end(i); ++k) {
+          const auto j = static_cast<std::size_t>(list_all_.indices[k]);
+          const vec_type r = x[j] - x[i];
+          const double w = Weight::value(detail::pair_distance(list_all_, k, r), c_lap_.re);
+          if (!(w > 0)) continue;
+          if (kind[j] == ParticleKind::dummy) {
+            towards += w * r;
+            u_wall += w * u[j];
+            w_wall += w;
+          } else if (kind[j] == ParticleKind::fluid) {
+            u_fluid += w * u_star_[j];
+            w_fluid += w;
+          }
+        }
+      if (!(w_wall > 0) || !(towards.norm() > 0)) {
+        ghost_gradient_[i] = vec_type::Zero();
+        continue;
+      }
+      const vec_type nrm = towards.normalized();
+      u_wall /= w_wall;
+      const vec_type uf = kind[i] == ParticleKind::fluid ? u_star_[i] : (w_fluid > 0 ? vec_type(u_fluid / w_fluid) : u_wall);
+      const vec_type g_t = p_.gravity - p_.gravity.dot(nrm) * nrm;
+      ghost_gradient_[i] = rho * g_t + (rho / dt) * (uf - u_wall).dot(nrm) * nrm;
+    }
+  }
 
   // external_acceleration() is written by the caller between steps: a wrong size or a non-finite
   // entry is bad input, named here rather than surfacing later as a PPE that does not converge.
@@ -399,6 +451,7 @@ class FluidSolver {
   NeighborList list_all_;
   NeighborList short_all_;  // pairs within max(re_density, re_gradient), if shorter than re_laplacian
   NeighborList list_pw_;    // the pairs of short_all() without dummy particles
+  NeighborList list_ff_;    // WallCondition::neumann: the pairs of list_pw_ with a fluid neighbour
   bool short_lists_ = false;
   MpsConstants<double> c_n_, c_grad_, c_lap_;
   FieldHandle<double> pressure_, density_;
@@ -410,7 +463,7 @@ class FluidSolver {
   PpeMatrix a_;
   PpeVector b_, solution_;
   std::vector<std::uint8_t> surface_;
-  VecArray<Dim> external_, u_star_, lap_u_, grad_p_, scratch_;
+  VecArray<Dim> external_, u_star_, lap_u_, grad_p_, scratch_, ghost_gradient_;
   std::vector<double> div_, source_, new_pressure_;
   SolveReport report_;
   FluidStepTimings timings_;

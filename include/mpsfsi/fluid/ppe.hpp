@@ -22,8 +22,10 @@ inline namespace MPSFSI_ABI {
 // negated into the symmetric positive definite system
 //   A_ii = c sum_j w_ij,  A_ij = -c w_ij,  b_i = -s_i,   c = 2d/(lambda n0),
 // over the unknowns: fluid and wall particles not at the free surface. Neighbours at the free
-// surface (P = 0, Dirichlet) add to the diagonal only; dummy particles are not in the PPE and
-// must already be absent from `list` (FluidSolver passes its fluid-and-wall list).
+// surface (P = 0, Dirichlet) add to the diagonal only; dummy particles are not unknowns and
+// are left out, unless `ghost_gradient` is given (WallCondition::neumann): a dummy neighbour j of
+// row i then stands for the ghost pressure P_i + G_i . (x_j - x_i), which moves its term
+// c w_ij G_i . r_ij to the right-hand side, and the matrix stays as it is.
 //
 // Enclosed regions: a connected set of unknowns none of which has a Dirichlet neighbour (free
 // surface, or a solid-kind particle) makes a pure Neumann block: singular, its pressure level
@@ -46,8 +48,9 @@ class PpeAssembler {
   void assemble(const VecArray<Dim, Scalar>& x, const std::vector<ParticleKind>& kinds,
                 const std::vector<std::uint8_t>& surface, const BasicNeighborList<Scalar>& list,
                 const MpsConstants<Scalar>& lap, const std::vector<Scalar>& source, PpeMatrix& a, PpeVector& b,
-                bool leave_out_enclosed = false) {
+                bool leave_out_enclosed = false, const VecArray<Dim, Scalar>* ghost_gradient = nullptr) {
     left_out_.clear();
+    ghost_gradient_ = ghost_gradient;
     assemble_once(x, kinds, surface, list, lap, source, a, b);
     find_enclosed(a);
     enclosed_fluid_ = static_cast<std::size_t>(std::count_if(enclosed_.begin(), enclosed_.end(), [&](Index i) {
@@ -110,13 +113,17 @@ class PpeAssembler {
       const auto i = static_cast<std::size_t>(particle_of_row_[static_cast<std::size_t>(r)]);
       int pos = outer[r];
       const int diag_pos = pos++;
-      Scalar diag = 0;
+      Scalar diag = 0, ghost = 0;
       for (Offset k = list.begin(i); k < list.end(i); ++k) {
         const auto j = static_cast<std::size_t>(list.indices[k]);
-        if (kinds[j] == ParticleKind::dummy) continue;
+        if (kinds[j] == ParticleKind::dummy && !ghost_gradient_) continue;
         const Vec<Dim, Scalar> rij = x[j] - x[i];
         const Scalar w = Weight::value(detail::pair_distance(list, k, rij), lap.re);
         if (!(w > 0)) continue;
+        if (kinds[j] == ParticleKind::dummy) {
+          ghost += c * w * (*ghost_gradient_)[i].dot(rij);
+          continue;
+        }
         diag += c * w;
         if (row_of_[j] >= 0) {
           cols[pos] = row_of_[j];
@@ -139,7 +146,7 @@ class PpeAssembler {
         cols[q + 1] = col;
         vals[q + 1] = val;
       }
-      b[r] = static_cast<double>(-source[i]);
+      b[r] = static_cast<double>(ghost - source[i]);
     }
   }
 
@@ -165,6 +172,7 @@ class PpeAssembler {
       if (!anchored_[r]) enclosed_.push_back(particle_of_row_[r]);
   }
 
+  const VecArray<Dim, Scalar>* ghost_gradient_ = nullptr;
   std::vector<Index> row_of_;
   std::vector<Index> particle_of_row_;
   std::vector<std::uint8_t> anchored_, left_out_;
