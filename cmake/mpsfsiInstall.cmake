@@ -13,6 +13,10 @@ if(MPSFSI_WITH_HYPRE)
   install(EXPORT mpsfsiHypreTargets NAMESPACE mpsfsi:: DESTINATION "${MPSFSI_INSTALL_CMAKEDIR}")
   install(FILES cmake/FindHYPRE.cmake DESTINATION "${MPSFSI_INSTALL_CMAKEDIR}")
 endif()
+if(MPSFSI_WITH_MPI)
+  install(TARGETS mpsfsi_mpi EXPORT mpsfsiMpiTargets)
+  install(EXPORT mpsfsiMpiTargets NAMESPACE mpsfsi:: DESTINATION "${MPSFSI_INSTALL_CMAKEDIR}")
+endif()
 
 configure_package_config_file(cmake/mpsfsiConfig.cmake.in
   "${PROJECT_BINARY_DIR}/mpsfsiConfig.cmake"

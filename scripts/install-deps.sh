@@ -8,7 +8,8 @@ packages=(
   libeigen3-dev libnanoflann-dev # the library's dependencies
   doctest-dev                    # tests
   libbenchmark-dev               # micro-benchmarks
-  libhypre-dev                   # optional: BoomerAMG PPE solver (mpsfsi::hypre; brings MPI)
+  libhypre-dev                   # optional: BoomerAMG PPE solver (mpsfsi::hypre)
+  libopenmpi-dev openmpi-bin     # optional: distribution over MPI processes (mpsfsi::mpi; mpirun for its tests)
   libcli11-dev libyaml-cpp-dev   # the examples' command lines and YAML case files
   python3 python3-matplotlib     # the examples' plot scripts
 )

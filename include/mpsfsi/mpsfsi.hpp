@@ -60,6 +60,7 @@
 #include "mpsfsi/io/csv_writer.hpp"
 #include "mpsfsi/io/progress.hpp"
 #include "mpsfsi/io/pvd_writer.hpp"
+#include "mpsfsi/io/pvtu_writer.hpp"
 #include "mpsfsi/io/vtu_writer.hpp"
 
 #include "mpsfsi/core/filter_neighbors.hpp"

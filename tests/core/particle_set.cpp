@@ -2,6 +2,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
 
 #include "mpsfsi/core/particle_set.hpp"
 
@@ -72,6 +75,48 @@ TEST_CASE("core.particle_set: holds a million particles") {
   CHECK(set.size() == 1000000);
   CHECK(set.field(p).size() == 1000000);
   CHECK(set.ids().back() == 999999);
+}
+
+TEST_CASE("core.particle_set: a packed particle unpacks with every field and its id") {
+  ParticleSet<3> from;
+  const auto s = from.add_field<double>("s");
+  const auto v = from.add_field<Vec<3, double>>("v");
+  const auto t = from.add_field<Mat<3, double>>("t");
+  const auto k = from.add_field<std::int32_t>("k");
+  for (int i = 0; i < 3; ++i) from.add(Vec<3, double>(i, 2 * i, 3 * i), ParticleKind::solid, Vec<3, double>(-i, 0, i));
+  from.number_ids_from(100);
+  CHECK(from.ids() == std::vector<Index>{100, 101, 102});
+  from.field(s)[1] = 1.5;
+  from.field(v)[1] = Vec<3, double>(1, 2, 3);
+  from.field(t)[1] = Mat<3, double>::Constant(4);
+  from.field(k)[1] = -7;
+  CHECK(from.packed_size() == 2 * 24 + 1 + 4 + 8 + 24 + 72 + 4);
+  std::vector<unsigned char> bytes(from.packed_size());
+  from.pack(1, bytes.data());
+
+  ParticleSet<3> to;
+  to.add_field<double>("s");
+  to.add_field<Vec<3, double>>("v");
+  to.add_field<Mat<3, double>>("t");
+  to.add_field<std::int32_t>("k");
+  to.add(Vec<3, double>::Zero());
+  to.unpack(bytes.data());
+  REQUIRE(to.size() == 2);
+  CHECK(to.ids()[1] == 101);
+  CHECK(to.positions()[1] == Vec<3, double>(1, 2, 3));
+  CHECK(to.velocities()[1] == Vec<3, double>(-1, 0, 1));
+  CHECK(to.kinds()[1] == ParticleKind::solid);
+  CHECK(to.field(s)[1] == 1.5);
+  CHECK(to.field(v)[1] == Vec<3, double>(1, 2, 3));
+  CHECK(to.field(t)[1] == Mat<3, double>::Constant(4));
+  CHECK(to.field(k)[1] == -7);
+  CHECK(to.add(Vec<3, double>::Zero()) == 2);
+  CHECK(to.ids()[2] == 102);  // new ids continue after the largest one received
+  to.unpack_into(0, bytes.data());
+  CHECK(to.ids()[0] == 101);
+  CHECK(to.field(t)[0] == Mat<3, double>::Constant(4));
+  CHECK_THROWS_AS(from.number_ids_from(-1), InvalidInput);
+  CHECK_THROWS_AS(from.number_ids_from(std::numeric_limits<Index>::max() - 1), InvalidInput);
 }
 
 }  // TEST_SUITE

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -169,6 +171,82 @@ class ParticleSet {
       }
     });
     validate();
+  }
+
+  // Gives the particles the ids first, first + 1, ... in their order, and later additions the ids
+  // after them. A set split over processes (mpi/) numbers each part from its offset, so that
+  // ids are unique over all parts.
+  void number_ids_from(Index first) {
+    if (first < 0 || static_cast<std::size_t>(std::numeric_limits<Index>::max() - first) < size())
+      detail::throw_invalid("ParticleSet::number_ids_from", "ids from " + std::to_string(first) + " for " +
+                                                                std::to_string(size()) + " particles exceed 2^31 - 1");
+    for (std::size_t k = 0; k < size(); ++k) id_[k] = first + static_cast<Index>(k);
+    next_id_ = first + static_cast<Index>(size());
+  }
+
+  // Bytes that pack() writes per particle: every built-in and extra field.
+  std::size_t packed_size() const {
+    return 2 * sizeof(vec_type) + sizeof(ParticleKind) + sizeof(Index) + scalars_.data.size() * sizeof(Scalar) +
+           vectors_.data.size() * sizeof(vec_type) + tensors_.data.size() * sizeof(mat_type) +
+           ints_.data.size() * sizeof(std::int32_t);
+  }
+
+  // Writes particle i, every field, to out[0 .. packed_size()) (to move it to another process).
+  void pack(std::size_t i, unsigned char* out) const {
+    auto put = [&out](const auto& value) {
+      std::memcpy(out, static_cast<const void*>(&value), sizeof value);
+      out += sizeof value;
+    };
+    put(position_[i]);
+    put(velocity_[i]);
+    put(kind_[i]);
+    put(id_[i]);
+    for_each_store_const([&](const auto& store) {
+      for (const auto& f : store.data) put(f[i]);
+    });
+  }
+
+  // Appends the particle that pack() wrote from a set with the same fields, with its id.
+  void unpack(const unsigned char* in) {
+    auto get = [&in](auto& value) {
+      std::memcpy(static_cast<void*>(&value), in, sizeof value);  // Eigen's fixed-size types are plain arrays
+      in += sizeof value;
+    };
+    vec_type p, v;
+    ParticleKind kind;
+    Index id;
+    get(p);
+    get(v);
+    get(kind);
+    get(id);
+    position_.push_back(p);
+    velocity_.push_back(v);
+    kind_.push_back(kind);
+    id_.push_back(id);
+    next_id_ = std::max(next_id_, id + 1);
+    for_each_store([&](auto& store) {
+      using T = typename std::decay_t<decltype(store.data)>::value_type::value_type;
+      for (auto& f : store.data) {
+        T value;
+        get(value);
+        f.push_back(value);
+      }
+    });
+  }
+
+  // Overwrites particle i with what pack() wrote (the same particle, moved on).
+  void unpack_into(std::size_t i, const unsigned char* in) {
+    auto get = [&in](auto& value) {
+      std::memcpy(static_cast<void*>(&value), in, sizeof value);  // Eigen's fixed-size types are plain arrays
+      in += sizeof value;
+    };
+    get(position_[i]);
+    get(velocity_[i]);
+    get(kind_[i]);
+    get(id_[i]);
+    for_each_store([&](auto& store) {
+      for (auto& f : store.data) get(f[i]);
+    });
   }
 
   // Reorders every field: particle k after the call is particle new_to_old[k] before it.

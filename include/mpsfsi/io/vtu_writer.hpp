@@ -64,6 +64,18 @@ class VtuWriter {
 
   std::size_t size() const { return points_->size(); }
 
+  // The point arrays write() declares, in its order, as f(VTK type, name, components): what the
+  // index of a parallel file (.pvtu, pvtu_writer.hpp) repeats for its pieces.
+  template <class F>
+  void for_each_declaration(F&& f) const {
+    for (const Field& field : fields_)
+      std::visit([&](auto* a) {
+        using A = std::remove_const_t<std::remove_pointer_t<decltype(a)>>;
+        f(type_name<element_t<A>>(), field.name, components<A>());
+      }, field.data);
+  }
+  static const char* points_type() { return type_name<Scalar>(); }
+
   // Each add_* throws InvalidInput if the name is empty or taken, or the array's size is not
   // the point count. They return *this so calls can be chained.
   VtuWriter& add_scalar(std::string name, const scalar_array& v) { return add(std::move(name), &v); }
@@ -229,10 +241,10 @@ class VtuWriter {
   std::vector<Field> fields_;
 };
 
-// Writes a particle set: positions as points, then velocity, kind (Int32, the ParticleKind
-// value), id, and every extra field under its own name.
+// A writer of a particle set: positions as points, then velocity, kind (Int32, the ParticleKind
+// value), id, and every extra field under its own name. It views the set's arrays.
 template <int Dim, class Scalar>
-void write_vtu(const std::string& path, const ParticleSet<Dim, Scalar>& particles) {
+VtuWriter<Dim, Scalar> particle_vtu_writer(const ParticleSet<Dim, Scalar>& particles) {
   static_assert(std::is_same_v<Index, std::int32_t>, "ids are written as Int32");
   VtuWriter<Dim, Scalar> w(particles.positions());
   w.add_vector("velocity", particles.velocities());
@@ -245,7 +257,13 @@ void write_vtu(const std::string& path, const ParticleSet<Dim, Scalar>& particle
   particles.for_each_vector_field([&w](const std::string& name, const auto& a) { w.add_vector(name, a); });
   particles.for_each_tensor_field([&w](const std::string& name, const auto& a) { w.add_tensor(name, a); });
   particles.for_each_int_field([&w](const std::string& name, const auto& a) { w.add_int(name, a); });
-  w.write(path);
+  return w;
+}
+
+// Writes a particle set as particle_vtu_writer() lays it out.
+template <int Dim, class Scalar>
+void write_vtu(const std::string& path, const ParticleSet<Dim, Scalar>& particles) {
+  particle_vtu_writer(particles).write(path);
 }
 
 }  // namespace MPSFSI_ABI

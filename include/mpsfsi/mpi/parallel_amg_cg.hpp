@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+
+#include <HYPRE.h>
+#include <HYPRE_parcsr_ls.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "mpsfsi/core/abi.hpp"
+#include "mpsfsi/fluid/hypre_amg.hpp"
+#include "mpsfsi/fluid/linear_solver.hpp"
+#include "mpsfsi/mpi/communicator.hpp"
+
+namespace mpsfsi {
+inline namespace MPSFSI_ABI {
+
+// A symmetric positive definite system distributed by rows: this process holds the rows
+// first_row .. first_row + rows() - 1 in CSR form with global column numbers (rows of lower
+// ranks first, no gaps).
+struct DistributedRows {
+  std::int64_t first_row = 0;
+  std::vector<std::int64_t> offsets{0};  // rows() + 1 entries
+  std::vector<HYPRE_BigInt> columns;
+  std::vector<double> values;
+  std::vector<double> rhs;
+  std::size_t rows() const { return offsets.size() - 1; }
+  void clear() {
+    offsets.assign(1, 0);
+    columns.clear();
+    values.clear();
+    rhs.clear();
+  }
+};
+
+// Conjugate gradient preconditioned by one V-cycle of BoomerAMG (the settings of HypreAmgCg:
+// hypre's defaults), over every process of the communicator, through hypre's IJ interface and
+// ParCSR matrices. The hierarchy is rebuilt at every solve. Converged when |r| <= tolerance |b|
+// in the global 2-norm. Collective.
+class ParallelAmgCg {
+ public:
+  ParallelAmgCg() { detail::ensure_hypre_ready(); }
+
+  // x: this process's part of the warm start, overwritten with the solution.
+  SolveReport solve(const Communicator& comm, const DistributedRows& a, std::vector<double>& x, double tolerance,
+                    int max_iterations) {
+    const auto n = static_cast<HYPRE_Int>(a.rows());
+    x.resize(a.rows(), 0.0);
+    const std::int64_t total = comm.sum(static_cast<std::int64_t>(n));
+    double b2 = 0;
+    for (const double v : a.rhs) b2 += v * v;
+    if (total == 0 || comm.sum(b2) == 0) {
+      std::fill(x.begin(), x.end(), 0.0);
+      return SolveReport{true, 0, 0.0};
+    }
+    const auto lower = static_cast<HYPRE_BigInt>(a.first_row);
+    const auto upper = static_cast<HYPRE_BigInt>(a.first_row + n - 1);
+    rows_.resize(static_cast<std::size_t>(n));
+    counts_.resize(static_cast<std::size_t>(n));
+    for (HYPRE_Int i = 0; i < n; ++i) {
+      rows_[static_cast<std::size_t>(i)] = lower + i;
+      counts_[static_cast<std::size_t>(i)] = static_cast<HYPRE_Int>(a.offsets[static_cast<std::size_t>(i) + 1] -
+                                                                    a.offsets[static_cast<std::size_t>(i)]);
+    }
+    HYPRE_IJMatrix ij_a;
+    HYPRE_IJMatrixCreate(comm.get(), lower, upper, lower, upper, &ij_a);
+    HYPRE_IJMatrixSetObjectType(ij_a, HYPRE_PARCSR);
+    HYPRE_IJMatrixSetRowSizes(ij_a, counts_.data());
+    HYPRE_IJMatrixInitialize(ij_a);
+    if (n > 0) HYPRE_IJMatrixSetValues(ij_a, n, counts_.data(), rows_.data(), a.columns.data(), a.values.data());
+    HYPRE_IJMatrixAssemble(ij_a);
+    HYPRE_ParCSRMatrix par_a;
+    HYPRE_IJMatrixGetObject(ij_a, reinterpret_cast<void**>(&par_a));
+    HYPRE_IJVector ij_b, ij_x;
+    make_vector(comm, lower, upper, a.rhs.data(), ij_b);
+    make_vector(comm, lower, upper, x.data(), ij_x);
+    HYPRE_ParVector par_b, par_x;
+    HYPRE_IJVectorGetObject(ij_b, reinterpret_cast<void**>(&par_b));
+    HYPRE_IJVectorGetObject(ij_x, reinterpret_cast<void**>(&par_x));
+
+    HYPRE_Solver amg, pcg;
+    HYPRE_BoomerAMGCreate(&amg);
+    HYPRE_BoomerAMGSetPrintLevel(amg, 0);
+    HYPRE_BoomerAMGSetMaxIter(amg, 1);
+    HYPRE_BoomerAMGSetTol(amg, 0.0);
+    HYPRE_ParCSRPCGCreate(comm.get(), &pcg);
+    HYPRE_PCGSetTol(pcg, tolerance);
+    HYPRE_PCGSetMaxIter(pcg, max_iterations);
+    HYPRE_PCGSetTwoNorm(pcg, 1);
+    HYPRE_PCGSetLogging(pcg, 1);
+    HYPRE_PCGSetPrintLevel(pcg, 0);
+    HYPRE_PCGSetPrecond(pcg, reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
+                        reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup), amg);
+    HYPRE_ParCSRPCGSetup(pcg, par_a, par_b, par_x);
+    HYPRE_ParCSRPCGSolve(pcg, par_a, par_b, par_x);
+    HYPRE_Int iterations = 0;
+    HYPRE_Real residual = 1;
+    HYPRE_PCGGetNumIterations(pcg, &iterations);
+    HYPRE_PCGGetFinalRelativeResidualNorm(pcg, &residual);
+    if (n > 0) HYPRE_IJVectorGetValues(ij_x, n, rows_.data(), x.data());
+    HYPRE_ParCSRPCGDestroy(pcg);
+    HYPRE_BoomerAMGDestroy(amg);
+    HYPRE_IJVectorDestroy(ij_x);
+    HYPRE_IJVectorDestroy(ij_b);
+    HYPRE_IJMatrixDestroy(ij_a);
+    return SolveReport{std::isfinite(residual) && residual <= tolerance, static_cast<int>(iterations),
+                       static_cast<double>(residual)};
+  }
+
+ private:
+  void make_vector(const Communicator& comm, HYPRE_BigInt lower, HYPRE_BigInt upper, const double* values,
+                   HYPRE_IJVector& v) {
+    HYPRE_IJVectorCreate(comm.get(), lower, upper, &v);
+    HYPRE_IJVectorSetObjectType(v, HYPRE_PARCSR);
+    HYPRE_IJVectorInitialize(v);
+    if (upper >= lower) HYPRE_IJVectorSetValues(v, static_cast<HYPRE_Int>(upper - lower + 1), rows_.data(), values);
+    HYPRE_IJVectorAssemble(v);
+  }
+
+  std::vector<HYPRE_BigInt> rows_;
+  std::vector<HYPRE_Int> counts_;
+};
+
+}  // namespace MPSFSI_ABI
+}  // namespace mpsfsi
