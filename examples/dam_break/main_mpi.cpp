@@ -5,6 +5,7 @@
 // Process 0 writes the CSV and prints the progress. Checkpoints are not distributed yet.
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -75,7 +76,8 @@ int run(const Communicator& comm, const Options& o) {
     std::printf("%8s %8s %8s %8s %8s\n", "t (s)", "T", "Z/a", "tau", "H/2a");
   }
   double next_output = 0, wall = 0;
-  long long frames = 0;
+  long long frames = 0, ppe_iterations = 0;
+  DistributedStepTimings phases;  // summed over the steps, slowest process per phase
   for (;;) {
     const double t = solver.time();
     if (t >= next_output - 1e-12) {
@@ -93,11 +95,23 @@ int run(const Communicator& comm, const Options& o) {
     }
     if (t >= o.end - 1e-12) break;
     solver.step();
-    wall += comm.max(solver.last_timings().total());
+    const DistributedStepTimings& last = solver.last_timings();
+    phases.distribute += comm.max(last.distribute);
+    phases.predictor += comm.max(last.predictor);
+    phases.ppe_assembly += comm.max(last.ppe_assembly);
+    phases.ppe_solve += comm.max(last.ppe_solve);
+    phases.corrector += comm.max(last.corrector);
+    ppe_iterations += solver.last_solve().iterations;
+    wall += comm.max(last.total());
     if (root) progress->update(solver.step_count(), solver.time());
   }
   if (root) {
     progress->finish();
+    const double steps = static_cast<double>(std::max(1LL, solver.step_count()));
+    std::printf("ms per step (slowest process): distribution and search %.2f, predictor %.2f, PPE assembly %.2f, "
+                "PPE solve %.2f (%.1f BoomerAMG-PCG iterations), corrector %.2f\n",
+                1e3 * phases.distribute / steps, 1e3 * phases.predictor / steps, 1e3 * phases.ppe_assembly / steps,
+                1e3 * phases.ppe_solve / steps, static_cast<double>(ppe_iterations) / steps, 1e3 * phases.corrector / steps);
     std::printf("wrote %s/dam_break.pvd and %s/dam_break.csv; plot with python3 examples/dam_break/plot.py %s\n",
                 o.out.c_str(), o.out.c_str(), o.out.c_str());
   }

@@ -238,6 +238,8 @@ class DistributedFluidSolver {
   std::size_t owned() const { return owned_; }
   const std::vector<double>& pressure() const { return set_.field(pressure_); }
   const SolveReport& last_solve() const { return report_; }
+  // The PPE's solver, to change its BoomerAMG settings.
+  ParallelAmgCg& linear_solver() { return solver_; }
   const DistributedStepTimings& last_timings() const { return timings_; }
   const Halo<Dim>& halo() const { return halo_; }
   const RcbDecomposition<Dim>& decomposition() const { return rcb_; }
