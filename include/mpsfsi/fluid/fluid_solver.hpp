@@ -53,6 +53,32 @@ struct FluidDefaults {
   static constexpr GradientReference pressure_gradient_reference = GradientReference::neighbour_minimum;
 };
 
+namespace detail {
+
+// The lists of one step, cut from the search's at the Laplacian's radius. The number density,
+// collision, divergence, gradient correction and pressure gradient run over lists cut to their
+// radius re_short (2.1 l0 by default, against the Laplacian's 3.1 l0): less than half the pairs.
+// The pairs dropped have zero weight and the rest keep their order, so the sums are the same to
+// the bit. (Cut a little beyond the radius so that a pair at the radius within round-off is
+// kept; its weight is zero anyway.) The last three see no dummy particles (without_dummies);
+// the PPE assembly takes the whole list and skips them itself. Returns whether short_all was
+// filled (re_short < re_laplacian); otherwise the whole list serves as it.
+inline bool cut_step_lists(const NeighborList& all, const std::vector<ParticleKind>& kind, double re_short,
+                           double re_laplacian, NeighborList& short_all, NeighborList& without_dummies) {
+  auto in_ppe = [&](Index j) { return kind[static_cast<std::size_t>(j)] != ParticleKind::dummy; };
+  if (!(re_short < re_laplacian)) {
+    filter_neighbors(all, in_ppe, without_dummies);
+    return false;
+  }
+  const double cut = re_short * (1 + 1e-9);
+  const double* const d = all.distances.data();
+  filter_neighbors(all, [d, cut](std::size_t, Index, Offset k) { return d[k] <= cut; }, short_all);
+  filter_neighbors(short_all, in_ppe, without_dummies);
+  return true;
+}
+
+}  // namespace detail
+
 // Wall-clock seconds spent in each phase of the last step.
 struct FluidStepTimings {
   double search = 0, predictor = 0, ppe_assembly = 0, ppe_solve = 0, corrector = 0;
@@ -326,23 +352,8 @@ class FluidSolver {
     search_.build(set_.positions());
     search_.self_query(set_.positions(), list_all_, opt);
     const auto& kind = set_.kinds();
-    // The number density, collision, divergence, gradient correction and pressure gradient run
-    // over lists cut to their radius (2.1 l0 by default, against the Laplacian's 3.1 l0 that the
-    // search uses): less than half the pairs. The pairs dropped have zero weight and the rest keep their
-    // order, so the sums are the same to the bit. (Cut a little beyond the radius so that a pair
-    // at the radius within round-off is kept; its weight is zero anyway.) The last three see no
-    // dummy particles (list_pw_); the PPE assembly takes the whole list and skips them itself.
-    auto in_ppe = [&](Index j) { return kind[static_cast<std::size_t>(j)] != ParticleKind::dummy; };
-    const double re_short = std::max(p_.re_density(), p_.re_gradient());
-    short_lists_ = re_short < p_.re_laplacian();
-    if (short_lists_) {
-      const double cut = re_short * (1 + 1e-9);
-      const double* const d = list_all_.distances.data();
-      filter_neighbors(list_all_, [d, cut](std::size_t, Index, Offset k) { return d[k] <= cut; }, short_all_);
-      filter_neighbors(short_all_, in_ppe, list_pw_);
-    } else {
-      filter_neighbors(list_all_, in_ppe, list_pw_);
-    }
+    short_lists_ = detail::cut_step_lists(list_all_, kind, std::max(p_.re_density(), p_.re_gradient()), p_.re_laplacian(),
+                                          short_all_, list_pw_);
     if (p_.wall_condition == WallCondition::neumann)
       filter_neighbors(list_pw_, [&](Index j) { return kind[static_cast<std::size_t>(j)] == ParticleKind::fluid; },
                        list_ff_);

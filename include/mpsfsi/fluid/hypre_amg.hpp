@@ -42,6 +42,38 @@ inline void ensure_hypre_ready() {
   (void)ready;
 }
 
+// CG preconditioned by one V-cycle of BoomerAMG on an assembled ParCSR system, to
+// |r| <= tolerance |b| in the 2-norm, from the start x holds; hypre's defaults except the
+// strength threshold (hypre's default 0.25) and the levels of aggressive coarsening (default 0).
+inline SolveReport boomeramg_pcg(MPI_Comm comm, HYPRE_ParCSRMatrix a, HYPRE_ParVector b, HYPRE_ParVector x, double tolerance,
+                                 int max_iterations, double strong_threshold = 0.25, int aggressive_levels = 0) {
+  HYPRE_Solver amg, pcg;
+  HYPRE_BoomerAMGCreate(&amg);
+  HYPRE_BoomerAMGSetPrintLevel(amg, 0);
+  HYPRE_BoomerAMGSetMaxIter(amg, 1);
+  HYPRE_BoomerAMGSetTol(amg, 0.0);
+  HYPRE_BoomerAMGSetStrongThreshold(amg, strong_threshold);
+  HYPRE_BoomerAMGSetAggNumLevels(amg, aggressive_levels);
+  HYPRE_ParCSRPCGCreate(comm, &pcg);
+  HYPRE_PCGSetTol(pcg, tolerance);
+  HYPRE_PCGSetMaxIter(pcg, max_iterations);
+  HYPRE_PCGSetTwoNorm(pcg, 1);
+  HYPRE_PCGSetLogging(pcg, 1);
+  HYPRE_PCGSetPrintLevel(pcg, 0);
+  HYPRE_PCGSetPrecond(pcg, reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
+                      reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup), amg);
+  HYPRE_ParCSRPCGSetup(pcg, a, b, x);
+  HYPRE_ParCSRPCGSolve(pcg, a, b, x);
+  HYPRE_Int iterations = 0;
+  HYPRE_Real residual = 1;
+  HYPRE_PCGGetNumIterations(pcg, &iterations);
+  HYPRE_PCGGetFinalRelativeResidualNorm(pcg, &residual);
+  HYPRE_ParCSRPCGDestroy(pcg);
+  HYPRE_BoomerAMGDestroy(amg);
+  return SolveReport{std::isfinite(residual) && residual <= tolerance, static_cast<int>(iterations),
+                     static_cast<double>(residual)};
+}
+
 }  // namespace detail
 
 // Conjugate gradient preconditioned by one V-cycle of BoomerAMG (hypre's defaults: HMIS
@@ -86,34 +118,13 @@ class HypreAmgCg {
     HYPRE_IJVectorGetObject(ij_b, reinterpret_cast<void**>(&par_b));
     HYPRE_IJVectorGetObject(ij_x, reinterpret_cast<void**>(&par_x));
 
-    HYPRE_Solver amg, pcg;
-    HYPRE_BoomerAMGCreate(&amg);
-    HYPRE_BoomerAMGSetPrintLevel(amg, 0);
-    HYPRE_BoomerAMGSetMaxIter(amg, 1);
-    HYPRE_BoomerAMGSetTol(amg, 0.0);
-    HYPRE_ParCSRPCGCreate(comm, &pcg);
-    HYPRE_PCGSetTol(pcg, tolerance);
-    HYPRE_PCGSetMaxIter(pcg, max_iterations);
-    HYPRE_PCGSetTwoNorm(pcg, 1);
-    HYPRE_PCGSetLogging(pcg, 1);
-    HYPRE_PCGSetPrintLevel(pcg, 0);
-    HYPRE_PCGSetPrecond(pcg, reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
-                        reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup), amg);
-    HYPRE_ParCSRPCGSetup(pcg, par_a, par_b, par_x);
-    HYPRE_ParCSRPCGSolve(pcg, par_a, par_b, par_x);
-    HYPRE_Int iterations = 0;
-    HYPRE_Real residual = 1;
-    HYPRE_PCGGetNumIterations(pcg, &iterations);
-    HYPRE_PCGGetFinalRelativeResidualNorm(pcg, &residual);
+    const SolveReport report = detail::boomeramg_pcg(comm, par_a, par_b, par_x, tolerance, max_iterations);
     HYPRE_IJVectorGetValues(ij_x, n, rows_.data(), x.data());
 
-    HYPRE_ParCSRPCGDestroy(pcg);
-    HYPRE_BoomerAMGDestroy(amg);
     HYPRE_IJVectorDestroy(ij_x);
     HYPRE_IJVectorDestroy(ij_b);
     HYPRE_IJMatrixDestroy(ij_a);
-    return SolveReport{std::isfinite(residual) && residual <= tolerance, static_cast<int>(iterations),
-                       static_cast<double>(residual)};
+    return report;
   }
 
  private:

@@ -303,18 +303,8 @@ class DistributedFluidSolver {
     opt.store_distances = true;
     search_.build(set_.positions());
     search_.self_query(set_.positions(), list_all_, opt);
-    const auto& kind = set_.kinds();
-    auto in_ppe = [&](Index j) { return kind[static_cast<std::size_t>(j)] != ParticleKind::dummy; };
-    const double re_short = std::max(p_.re_density(), p_.re_gradient());
-    short_lists_ = re_short < p_.re_laplacian();
-    if (short_lists_) {
-      const double cut = re_short * (1 + 1e-9);
-      const double* const d = list_all_.distances.data();
-      filter_neighbors(list_all_, [d, cut](std::size_t, Index, Offset k) { return d[k] <= cut; }, short_all_);
-      filter_neighbors(short_all_, in_ppe, list_pw_);
-    } else {
-      filter_neighbors(list_all_, in_ppe, list_pw_);
-    }
+    short_lists_ = detail::cut_step_lists(list_all_, set_.kinds(), std::max(p_.re_density(), p_.re_gradient()),
+                                          p_.re_laplacian(), short_all_, list_pw_);
   }
   const NeighborList& short_all() const { return short_lists_ ? short_all_ : list_all_; }
 
