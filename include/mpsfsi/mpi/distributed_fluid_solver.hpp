@@ -13,6 +13,7 @@
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/filter_neighbors.hpp"
+#include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/particle_set.hpp"
 #include "mpsfsi/fluid/fluid_parameters.hpp"
 #include "mpsfsi/fluid/fluid_solver.hpp"
@@ -122,7 +123,9 @@ class DistributedFluidSolver {
     halo_.refresh_array(comm_, surface_);
     laplacian<Weight>(x, list_all_, u, c_lap_, lap_u_);
     u_star_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
       u_star_[i] = kind[i] == ParticleKind::fluid ? vec_type(u[i] + dt * (p_.kinematic_viscosity * lap_u_[i] + p_.gravity))
                                                   : u[i];
       set_.field(surface_field_)[i] = surface_[i];
@@ -137,7 +140,9 @@ class DistributedFluidSolver {
     const double rho = p_.density;
     const std::size_t owned = halo_.owned();
     source_.resize(owned);
-    for (std::size_t i = 0; i < owned; ++i) {
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(owned); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
       const double deficit = p_.density_term_compression_only ? std::min(c_n_.n0 - nd[i], 0.0) : c_n_.n0 - nd[i];
       source_[i] = rho / dt * div_[i] + p_.gamma * rho / (dt * dt) * deficit / c_n_.n0;
     }
@@ -207,7 +212,9 @@ class DistributedFluidSolver {
     fail(blowup, "DistributedFluidSolver: at step " + std::to_string(step_count_ + 1) + " (t = " + detail::format_number(time_ + dt) + " s) ",
          step_count_ + 1, time_ + dt, culprit);
     auto& xs = set_.positions();
-    for (std::size_t i = 0; i < owned; ++i) {
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(owned); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
       if (kind[i] == ParticleKind::fluid) u[i] = u_star_[i] - (dt / rho) * grad_p_[i];
       xs[i] += dt * u[i];  // eq 15
       pressure[i] = new_pressure_[i];
