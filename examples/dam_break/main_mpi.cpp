@@ -60,11 +60,21 @@ int run(const Communicator& comm, const Options& o) {
   std::unique_ptr<PvdWriter> pvd;
   std::unique_ptr<CsvWriter> csv;
   std::unique_ptr<ProgressReporter> progress;
+  // Process 0 writes the index and the CSV; if it cannot, every process stops (no process may
+  // wait for it in a collective call).
+  std::string error;
   if (root) {
-    pvd = std::make_unique<PvdWriter>(o.out + "/dam_break.pvd");
-    csv = std::make_unique<CsvWriter>(o.out + "/dam_break.csv", std::vector<std::string>{"t", "T", "Z_over_a", "tau",
-                                                                                          "H_over_2a", "ppe_iterations",
-                                                                                          "wall_s"});
+    try {
+      pvd = std::make_unique<PvdWriter>(o.out + "/dam_break.pvd");
+      csv = std::make_unique<CsvWriter>(o.out + "/dam_break.csv", std::vector<std::string>{"t", "T", "Z_over_a", "tau",
+                                                                                            "H_over_2a", "ppe_iterations",
+                                                                                            "wall_s"});
+    } catch (const Error& e) {
+      error = e.what();
+    }
+  }
+  comm.throw_if_any_failed(error);
+  if (root) {
     progress = std::make_unique<ProgressReporter>(o.end);
     const std::string dt_text =
         o.dt > 0 ? mpsfsi_examples::detail::format_number(o.dt) + " s" : "automatic (Courant 0.2)";
@@ -86,9 +96,16 @@ int run(const Communicator& comm, const Options& o) {
       const double z = comm.max(scenes::surge_front(solver.particles(), o.l0)) / a;
       const double h = comm.max(scenes::column_height(solver.particles(), o.l0)) / (2 * a);
       if (root) {
-        pvd->add(t, file);
-        csv->row({t, t * std::sqrt(2 * g / a), z, t * std::sqrt(g / a), h,
-                  static_cast<double>(solver.last_solve().iterations), wall});
+        try {
+          pvd->add(t, file);
+          csv->row({t, t * std::sqrt(2 * g / a), z, t * std::sqrt(g / a), h,
+                    static_cast<double>(solver.last_solve().iterations), wall});
+        } catch (const Error& e) {
+          error = e.what();
+        }
+      }
+      comm.throw_if_any_failed(error);
+      if (root) {
         std::printf("%8.4f %8.3f %8.3f %8.3f %8.3f\n", t, t * std::sqrt(2 * g / a), z, t * std::sqrt(g / a), h);
       }
       next_output += o.every;

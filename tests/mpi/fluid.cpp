@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "mpsfsi/mpi/distributed_fluid_solver.hpp"
@@ -126,6 +127,27 @@ TEST_CASE("mpi.fluid: dam break on every process against one process") {
   CHECK(std::abs(many.height / one.height - 1) <= 0.01);
 }
 
+TEST_CASE("mpi.fluid: a time step above the stability limit stops every process and leaves no ghost behind") {
+  const Communicator comm;
+  const double l0 = 0.01;
+  ParticleSet<2> all;
+  scenes::add_block<2, double>(all, Vec<2>::Zero(), Vec<2>(0.1, 0.1), l0, ParticleKind::fluid);
+  scenes::add_tank<2, double>(all, Vec<2>(0.1, 0.15), l0);
+  FluidParameters<2> p;
+  p.l0 = l0;
+  p.dt = 0.1;  // the Courant limit is 0.2 l0 / sqrt(g l0) = 6.4e-3 s
+  DistributedFluidSolver<2> solver(comm, share_of(all, comm), p);
+  bool stopped = false;
+  try {
+    solver.step();
+  } catch (const InvalidInput& e) {
+    stopped = std::string(e.what()).find("exceeds the stability limit") != std::string::npos;
+  }
+  CHECK(comm.min(stopped ? 1 : 0) == 1);
+  CHECK(comm.sum(static_cast<std::int64_t>(solver.particles().size())) == static_cast<std::int64_t>(all.size()));
+  CHECK(solver.particles().size() == solver.owned());
+}
+
 TEST_CASE("mpi.fluid: bad input stops every process with one message") {
   const Communicator comm;
   ParticleSet<2> mine;
@@ -139,7 +161,7 @@ TEST_CASE("mpi.fluid: bad input stops every process with one message") {
   std::string caught;
   try {
     DistributedFluidSolver<2> solver(comm, mine, p);
-  } catch (const Error& e) {
+  } catch (const InvalidInput& e) {
     caught = e.what();
   }
   CHECK(caught.find("rank " + std::to_string(comm.size() - 1) + ": ") == 0);

@@ -77,7 +77,11 @@ class DistributedFluidSolver {
     } catch (const Error& e) {
       error = e.what();
     }
-    comm_.throw_if_any_failed(error);
+    try {
+      comm_.throw_if_any_failed(error);
+    } catch (const Error& e) {
+      throw InvalidInput(e.what());
+    }
     const auto fluid = std::count(set_.kinds().begin(), set_.kinds().end(), ParticleKind::fluid);
     if (comm_.sum(static_cast<std::int64_t>(set_.size())) == 0)
       detail::throw_invalid("DistributedFluidSolver", "the particle set is empty on every process");
@@ -107,10 +111,10 @@ class DistributedFluidSolver {
   // converge; the owned particles are then as before the step.
   void step() {
     auto tick = clock::now();
+    const double dt = choose_dt();  // from the owned particles, before any ghost exists
     redistribute();
     update_neighbors();
     timings_.distribute = lap_time(tick);
-    const double dt = choose_dt();
     const auto& x = set_.positions();
     auto& u = set_.velocities();
     const auto& kind = set_.kinds();
