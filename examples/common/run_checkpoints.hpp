@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Checkpoints of a running example: at a simulated-time interval (--checkpoint-every) and when
 // the run is asked to stop (Ctrl-C, SIGTERM), into <out>/<name>_<step>.bin (name "checkpoint"
-// unless the example runs several cases into one folder), written by
+// unless the example runs several cases into one folder; <name>_<step>_p<rank>.bin for each
+// process of a distributed run), written by
 // mpsfsi::write_checkpoint (a temporary file renamed when complete, so a kill at any moment
 // leaves the previous checkpoint valid). --restart FILE continues a run from one.
 #pragma once
@@ -23,8 +24,9 @@ class RunCheckpoints {
  public:
   // every: simulated seconds between checkpoints (0: only when asked to stop). Installs the
   // SIGINT and SIGTERM handlers, which let the current step finish.
-  RunCheckpoints(std::string out, double every, std::string name = "checkpoint")
-      : out_(std::move(out)), name_(std::move(name)), every_(every) {
+  // piece: appended to the file name before ".bin" (a distributed run's "_p<rank>").
+  RunCheckpoints(std::string out, double every, std::string name = "checkpoint", std::string piece = "")
+      : out_(std::move(out)), name_(std::move(name)), piece_(std::move(piece)), every_(every) {
     std::signal(SIGINT, detail::request_stop);
     std::signal(SIGTERM, detail::request_stop);
   }
@@ -47,8 +49,8 @@ class RunCheckpoints {
   template <class Solver, class... State>
   std::string write(Solver& solver, long long step, double t, State&... state) {
     char number[32];
-    std::snprintf(number, sizeof number, "_%09lld.bin", step);
-    const std::string path = out_ + "/" + name_ + number;
+    std::snprintf(number, sizeof number, "_%09lld", step);
+    const std::string path = out_ + "/" + name_ + number + piece_ + ".bin";
     mpsfsi::write_checkpoint(path, solver, state...);
     if (every_ > 0)
       while (next_ <= t + 1e-12) next_ += every_;
@@ -56,7 +58,7 @@ class RunCheckpoints {
   }
 
  private:
-  std::string out_, name_;
+  std::string out_, name_, piece_;
   double every_;
   double next_ = -1;
 };

@@ -38,6 +38,15 @@ struct DistributedStepTimings {
   double total() const { return distribute + predictor + ppe_assembly + ppe_solve + corrector; }
 };
 
+// What this process sent to other processes, point to point, in the last step. The reductions
+// (time step, load balance, flood fill) and hypre's own messages in the PPE solve are not counted.
+struct DistributedStepTraffic {
+  std::size_t migrated = 0, migration_bytes = 0;  // particles sent by migration and rebalancing
+  std::size_t ghosts = 0;                         // ghosts this process received
+  std::size_t halo_bytes = 0, halo_messages = 0;  // the halo build and every refresh of the step
+  bool rebalanced = false;
+};
+
 // FluidSolver's step (eqs 9-15, the same operators and policies) over the processes of an MPI
 // communicator: each process owns the particles in its box of a recursive coordinate bisection
 // (rcb_decomposition.hpp), rebuilt when the load imbalance exceeds rebalance_threshold, and
@@ -61,6 +70,8 @@ class DistributedFluidSolver {
  public:
   using vec_type = Vec<Dim, double>;
   using parameters_type = FluidParameters<Dim, double>;
+  using scalar_type = double;
+  static constexpr int dimension = Dim;
 
   // Collective. `particles`: this process's part of the initial particles (any part: they move
   // to their boxes here), with ids unique over all processes (ParticleSet::number_ids_from with
@@ -83,7 +94,8 @@ class DistributedFluidSolver {
       throw InvalidInput(e.what());
     }
     const auto fluid = std::count(set_.kinds().begin(), set_.kinds().end(), ParticleKind::fluid);
-    if (comm_.sum(static_cast<std::int64_t>(set_.size())) == 0)
+    total_particles_ = static_cast<std::size_t>(comm_.sum(static_cast<std::int64_t>(set_.size())));
+    if (total_particles_ == 0)
       detail::throw_invalid("DistributedFluidSolver", "the particle set is empty on every process");
     if (comm_.sum(static_cast<std::int64_t>(fluid)) == 0)
       detail::throw_invalid("DistributedFluidSolver", "the particle set has no fluid particles");
@@ -111,6 +123,8 @@ class DistributedFluidSolver {
   // converge; the owned particles are then as before the step.
   void step() {
     auto tick = clock::now();
+    traffic_ = DistributedStepTraffic{};
+    const std::size_t halo_bytes_before = halo_.total_bytes_sent(), halo_messages_before = halo_.total_messages_sent();
     const double dt = choose_dt();  // from the owned particles, before any ghost exists
     redistribute();
     update_neighbors();
@@ -223,6 +237,9 @@ class DistributedFluidSolver {
       xs[i] += dt * u[i];  // eq 15
       pressure[i] = new_pressure_[i];
     }
+    traffic_.ghosts = halo_.ghosts();
+    traffic_.halo_bytes = halo_.total_bytes_sent() - halo_bytes_before;
+    traffic_.halo_messages = halo_.total_messages_sent() - halo_messages_before;
     halo_.drop(set_);  // between steps the set holds the owned particles only
     owned_ = set_.size();
     time_ += dt;
@@ -230,6 +247,27 @@ class DistributedFluidSolver {
     ++step_count_;
     timings_.corrector = lap_time(tick);
   }
+
+  // Checkpoints (io/checkpoint.hpp), one file per process, each written and read by its process
+  // (not collective): the owned particles with every field (pressure is the PPE's warm start),
+  // the decomposition's cuts, the clock and the counters. A run continues from the files of a
+  // run on as many processes, each process reading the file its rank wrote, and then gives the
+  // same bits as the run that wrote them: every process holds the same particles in the same
+  // order under the same boxes. The header's particle count is the count over all processes.
+  static constexpr const char* checkpoint_kind = "DistributedFluidSolver";
+  std::size_t checkpoint_particle_count() const { return total_particles_; }
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    set_.checkpoint_state(a);
+    rcb_.checkpoint_state(a, comm_.size());
+    a.value(time_);
+    a.value(last_dt_);
+    a.value(reference_speed_);
+    a.value(step_count_);
+    a.value(enclosed_steps_);
+    a.value(rebalances_);
+  }
+  void checkpoint_restored() { owned_ = set_.size(); }
 
   // Collective: steps until the simulated time reaches end_time.
   void advance_to(double end_time) {
@@ -249,9 +287,12 @@ class DistributedFluidSolver {
   std::size_t owned() const { return owned_; }
   const std::vector<double>& pressure() const { return set_.field(pressure_); }
   const SolveReport& last_solve() const { return report_; }
+  std::size_t ppe_rows() const { return rows_.rows(); }  // this process's PPE unknowns in the last step
   // The PPE's solver, to change its BoomerAMG settings.
   ParallelAmgCg& linear_solver() { return solver_; }
+  const ParallelAmgCg& linear_solver() const { return solver_; }
   const DistributedStepTimings& last_timings() const { return timings_; }
+  const DistributedStepTraffic& last_traffic() const { return traffic_; }
   const Halo<Dim>& halo() const { return halo_; }
   const RcbDecomposition<Dim>& decomposition() const { return rcb_; }
   const Communicator& communicator() const { return comm_; }
@@ -298,12 +339,14 @@ class DistributedFluidSolver {
   // Particles move to the boxes that hold them; the boxes are recut when the load is uneven.
   // Then the ghosts of this step.
   void redistribute() {
-    migrate(comm_, rcb_, set_);
+    traffic_.migrated = migrate(comm_, rcb_, set_);
     if (load_imbalance(comm_, set_.size()) > rebalance_threshold) {
       rcb_.build(comm_, set_.positions(), set_.size());
-      migrate(comm_, rcb_, set_);
+      traffic_.migrated += migrate(comm_, rcb_, set_);
+      traffic_.rebalanced = true;
       ++rebalances_;
     }
+    traffic_.migration_bytes = traffic_.migrated * set_.packed_size();
     halo_.build(comm_, rcb_, set_, search_.radius());
     owned_ = halo_.owned();
   }
@@ -455,8 +498,9 @@ class DistributedFluidSolver {
   std::vector<double> div_, source_, new_pressure_, solution_;
   SolveReport report_;
   DistributedStepTimings timings_;
+  DistributedStepTraffic traffic_;
   double time_ = 0, last_dt_ = 0, reference_speed_ = 0;
-  std::size_t owned_ = 0;
+  std::size_t owned_ = 0, total_particles_ = 0;
   long long step_count_ = 0, enclosed_steps_ = 0, rebalances_ = 0;
 };
 

@@ -4,6 +4,7 @@
 #include <HYPRE.h>
 #include <HYPRE_parcsr_ls.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -45,6 +46,13 @@ struct DistributedRows {
 // Collective.
 class ParallelAmgCg {
  public:
+  // Wall-clock seconds of the last solve on this process.
+  struct Timings {
+    double matrix = 0;  // the IJ matrix and vectors (hypre's ParCSR, ghost columns exchanged)
+    double setup = 0;   // the BoomerAMG hierarchy
+    double solve = 0;   // the CG iterations, and the solution copied back
+  };
+
   double strong_threshold = 0.5;  // BoomerAMG's strength threshold (hypre's default: 0.25)
   int aggressive_levels = 1;      // levels with aggressive coarsening (hypre's default: 0)
 
@@ -53,6 +61,8 @@ class ParallelAmgCg {
   // x: this process's part of the warm start, overwritten with the solution.
   SolveReport solve(const Communicator& comm, const DistributedRows& a, std::vector<double>& x, double tolerance,
                     int max_iterations) {
+    const auto start = std::chrono::steady_clock::now();
+    timings_ = Timings{};
     const auto n = static_cast<HYPRE_Int>(a.rows());
     x.resize(a.rows(), 0.0);
     const std::int64_t total = comm.sum(static_cast<std::int64_t>(n));
@@ -87,14 +97,19 @@ class ParallelAmgCg {
     HYPRE_IJVectorGetObject(ij_b, reinterpret_cast<void**>(&par_b));
     HYPRE_IJVectorGetObject(ij_x, reinterpret_cast<void**>(&par_x));
 
+    timings_.matrix = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const SolveReport report = detail::boomeramg_pcg(comm.get(), par_a, par_b, par_x, tolerance, max_iterations,
-                                                     strong_threshold, aggressive_levels);
+                                                     strong_threshold, aggressive_levels, &timings_.setup);
     if (n > 0) HYPRE_IJVectorGetValues(ij_x, n, rows_.data(), x.data());
     HYPRE_IJVectorDestroy(ij_x);
     HYPRE_IJVectorDestroy(ij_b);
     HYPRE_IJMatrixDestroy(ij_a);
+    timings_.solve =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - timings_.matrix - timings_.setup;
     return report;
   }
+
+  const Timings& last_timings() const { return timings_; }
 
  private:
   void make_vector(const Communicator& comm, HYPRE_BigInt lower, HYPRE_BigInt upper, const double* values,
@@ -106,6 +121,7 @@ class ParallelAmgCg {
     HYPRE_IJVectorAssemble(v);
   }
 
+  Timings timings_;
   std::vector<HYPRE_BigInt> rows_;
   std::vector<HYPRE_Int> counts_;
 };

@@ -85,6 +85,8 @@ struct ExchangePlan {
                 MPI_BYTE, send_ranks[k], kTag, comm.get(), &requests_.back());
     }
     MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+    bytes_sent_total += out.size();
+    messages_sent_total += send_ranks.size();
   }
 
   static int message_length(std::size_t bytes) {
@@ -95,6 +97,8 @@ struct ExchangePlan {
   }
   static constexpr int kTag = 7301;
   mutable std::vector<MPI_Request> requests_;  // kept: a refresh allocates nothing once sized
+  // Sent by every run() since the plan was made, over all the plans it held (set_sends keeps them).
+  mutable std::size_t bytes_sent_total = 0, messages_sent_total = 0;
 };
 
 }  // namespace detail
@@ -194,6 +198,9 @@ class Halo {
   // What one refresh sends from this process: bytes, and messages (one per neighbouring process).
   std::size_t bytes_sent(const ParticleSet<Dim>& set) const { return plan_.send_index.size() * set.packed_size(); }
   std::size_t messages_sent() const { return plan_.send_ranks.size(); }
+  // Everything this process has sent through the halo so far (builds and refreshes of any kind).
+  std::size_t total_bytes_sent() const { return plan_.bytes_sent_total; }
+  std::size_t total_messages_sent() const { return plan_.messages_sent_total; }
 
  private:
   std::size_t owned_ = 0;

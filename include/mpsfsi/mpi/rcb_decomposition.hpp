@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
+#include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/mpi/communicator.hpp"
 
@@ -27,7 +29,7 @@ class RcbDecomposition {
   using vec_type = Vec<Dim, double>;
   // A process's box: lower <= x < upper per axis (infinite on the outer sides).
   struct Box {
-    vec_type lower, upper;
+    vec_type lower = vec_type::Zero(), upper = vec_type::Zero();
     double squared_distance(const vec_type& p) const {
       double d2 = 0;
       for (int a = 0; a < Dim; ++a) {
@@ -45,7 +47,8 @@ class RcbDecomposition {
   void build(const Communicator& comm, const VecArray<Dim, double>& positions, std::size_t count) {
     nodes_.assign(1, Node{0, comm.size(), 0, 0.0, -1, -1});
     std::vector<int> node_of(count, 0);
-    std::vector<int> splitting{0};
+    std::vector<int> splitting;  // the boxes to cut at this level: those of several processes
+    if (comm.size() > 1) splitting.push_back(0);
     while (!splitting.empty()) {
       const std::size_t s_count = splitting.size();
       std::vector<int> slot_of_node(nodes_.size(), -1);
@@ -135,11 +138,40 @@ class RcbDecomposition {
       }
       splitting.swap(next);
     }
-    boxes_.assign(static_cast<std::size_t>(comm.size()), Box{});
-    Box all;
-    all.lower.setConstant(-std::numeric_limits<double>::infinity());
-    all.upper.setConstant(std::numeric_limits<double>::infinity());
-    assign_boxes(0, all);
+    make_boxes();
+  }
+
+  // Checkpoints (io/checkpoint.hpp): the tree of cuts, from which the boxes follow. A tree read
+  // back must be one with a box per process of `processes`, or it throws InvalidInput.
+  template <class Archive>
+  void checkpoint_state(Archive& a, int processes) {
+    std::vector<int> ints;  // first_rank, ranks, axis, left, right of each node
+    std::vector<double> cuts;
+    for (const Node& n : nodes_) {
+      ints.insert(ints.end(), {n.first_rank, n.ranks, n.axis, n.left, n.right});
+      cuts.push_back(n.cut);
+    }
+    a.array(ints);
+    a.array(cuts);
+    if (ints.size() != 5 * cuts.size())
+      detail::throw_invalid("RcbDecomposition", "the checkpoint's decomposition is not a tree of cuts");
+    nodes_.resize(cuts.size());
+    for (std::size_t k = 0; k < cuts.size(); ++k)
+      nodes_[k] = Node{ints[5 * k], ints[5 * k + 1], ints[5 * k + 2], cuts[k], ints[5 * k + 3], ints[5 * k + 4]};
+    if (nodes_.empty() || nodes_[0].ranks != processes ||
+        nodes_.size() != 2 * static_cast<std::size_t>(processes) - 1)
+      detail::throw_invalid("RcbDecomposition", "the checkpoint's decomposition is for " +
+                                                    std::to_string(nodes_.empty() ? 0 : nodes_[0].ranks) +
+                                                    " processes, this run has " + std::to_string(processes));
+    // Children come after their parent (as build() makes them), so that no tree read back loops.
+    for (std::size_t k = 0; k < nodes_.size(); ++k) {
+      const Node& n = nodes_[k];
+      const auto after = [&](int child) { return child > static_cast<int>(k) && child < static_cast<int>(nodes_.size()); };
+      if (n.first_rank < 0 || n.ranks < 1 || n.first_rank + n.ranks > processes ||
+          (n.left < 0 ? n.right >= 0 || n.ranks != 1 : !after(n.left) || !after(n.right) || n.axis < 0 || n.axis >= Dim))
+        detail::throw_invalid("RcbDecomposition", "the checkpoint's decomposition is not a tree of cuts");
+    }
+    make_boxes();
   }
 
   int ranks() const { return static_cast<int>(boxes_.size()); }
@@ -166,6 +198,14 @@ class RcbDecomposition {
     double cut;             // below: x[axis] < cut
     int left, right;        // children, -1 for a leaf
   };
+
+  void make_boxes() {
+    boxes_.assign(static_cast<std::size_t>(nodes_[0].ranks), Box{});
+    Box all;
+    all.lower.setConstant(-std::numeric_limits<double>::infinity());
+    all.upper.setConstant(std::numeric_limits<double>::infinity());
+    assign_boxes(0, all);
+  }
 
   void assign_boxes(std::size_t k, const Box& b) {
     const Node& n = nodes_[k];
