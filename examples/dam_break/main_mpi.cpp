@@ -210,8 +210,9 @@ int run(const Communicator& comm, const Options& o) {
                 "PPE solve %.2f (%.1f BoomerAMG-PCG iterations), corrector %.2f\n",
                 1e3 * phases.distribute / n, 1e3 * phases.predictor / n, 1e3 * phases.ppe_assembly / n,
                 1e3 * phases.ppe_solve / n, static_cast<double>(ppe_iterations) / n, 1e3 * phases.corrector / n);
-    std::printf("sent per step (busiest process): halo %.1f kB in %.1f messages, %.1f particles migrated\n",
-                1e-3 * halo_bytes / n, halo_messages / n, migrated / n);
+    std::printf("sent per step (busiest process): halo %.1f kB in %.1f messages, %.1f particles migrated; "
+                "boxes recut %lld times\n",
+                1e-3 * halo_bytes / n, halo_messages / n, migrated / n, solver.rebalances());
     std::printf("wrote %s/dam_break.pvd and %s/dam_break.csv; plot with python3 examples/dam_break/plot.py %s\n",
                 o.out.c_str(), o.out.c_str(), o.out.c_str());
   }
