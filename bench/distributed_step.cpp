@@ -5,7 +5,8 @@
 // waiting in a collective); a step's time is the slowest process's, and process 0 reports. The
 // solver starts from rest and takes two steps before the timed ones, so that the PPE starts warm
 // as it does in a run.
-// Counters: particles, particle-steps/s; milliseconds a step per phase (slowest process); the
+// Counters: particles, particle-steps/s; milliseconds a step per phase, and of the distribution's
+// migration (with rebalancing), halo build and neighbour search (slowest process); the
 // PPE's unknowns, CG iterations and its split into matrix, AMG set-up and CG iterations; what the
 // busiest process sends a step (halo bytes and messages, particles migrated) and its ghosts;
 // memory: the largest process's peak resident set, and the bytes per particle that building
@@ -41,10 +42,12 @@ void dam_break_distributed(benchmark::State& state) {
   mine.number_ids_from(static_cast<Index>(comm.exclusive_prefix_sum(static_cast<std::int64_t>(mine.size()))));
   DistributedFluidSolver<2> solver(comm, std::move(mine), p);
   for (int warm = 0; warm < 2; ++warm) solver.step();
+  if (state.range(1) != 0) solver.rebalance_threshold = -1;  // recut the boxes at every step
 
   // Per step, the largest value over the processes of: the step, its five phases, the PPE's
-  // matrix, set-up and CG, halo bytes, halo messages, migrated particles, ghosts.
-  std::vector<double> slowest(13), sum(13, 0.0);
+  // matrix, set-up and CG, halo bytes, halo messages, migrated particles, ghosts, and the
+  // distribution's migration, halo and search.
+  std::vector<double> slowest(16), sum(16, 0.0);
   double iterations = 0, unknowns = 0;
   for (auto _ : state) {
     MPI_Barrier(comm.get());
@@ -66,7 +69,10 @@ void dam_break_distributed(benchmark::State& state) {
                static_cast<double>(traffic.halo_bytes),
                static_cast<double>(traffic.halo_messages),
                static_cast<double>(traffic.migrated),
-               static_cast<double>(traffic.ghosts)};
+               static_cast<double>(traffic.ghosts),
+               t.migration,
+               t.halo,
+               t.search};
     comm.max_in_place(slowest);
     state.SetIterationTime(slowest[0]);
     for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += slowest[k];
@@ -90,6 +96,9 @@ void dam_break_distributed(benchmark::State& state) {
   state.counters["halo_messages"] = sum[10] / steps;
   state.counters["migrated"] = sum[11] / steps;
   state.counters["ghosts"] = sum[12] / steps;
+  state.counters["migration_ms"] = 1e3 * sum[13] / steps;
+  state.counters["halo_ms"] = 1e3 * sum[14] / steps;
+  state.counters["search_ms"] = 1e3 * sum[15] / steps;
   if (peak_was_reset) {
     state.counters["peak_MB"] = 1e-6 * largest_peak;
     state.counters["bytes/particle"] = added / particles;
@@ -105,21 +114,37 @@ class SilentReporter : public benchmark::BenchmarkReporter {
 
 }  // namespace
 
-// /particles (about). 20,000 is the CTest smoke run.
-BENCHMARK(dam_break_distributed)->Arg(20000)->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(dam_break_distributed)->Arg(100000)->Iterations(10)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(dam_break_distributed)->Arg(1000000)->Iterations(3)->UseManualTime()->Unit(benchmark::kMillisecond);
+// /particles (about)/recut: 1 recuts the boxes at every step (rebalance_threshold < 0), to time
+// a rebalance. 20,000 is the CTest smoke run.
+BENCHMARK(dam_break_distributed)->Args({20000, 0})->Iterations(5)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(dam_break_distributed)
+    ->Args({100000, 0})
+    ->Args({100000, 1})
+    ->Iterations(10)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(dam_break_distributed)
+    ->Args({1000000, 0})
+    ->Args({1000000, 1})
+    ->Iterations(3)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   // Only process 0 writes: the others drop --benchmark_out* and report to a silent reporter.
+  // Every process drops --benchmark_enable_random_interleaving: each would shuffle the cases its
+  // own way, and the processes would meet in different cases' collective calls.
   std::vector<char*> args(argv, argv + argc);
-  if (rank != 0)
-    args.erase(std::remove_if(args.begin() + 1, args.end(),
-                              [](const char* a) { return std::string(a).rfind("--benchmark_out", 0) == 0; }),
-               args.end());
+  const auto starts_with = [](const char* a, const char* prefix) { return std::string(a).rfind(prefix, 0) == 0; };
+  args.erase(std::remove_if(args.begin() + 1, args.end(),
+                            [&](const char* a) {
+                              return starts_with(a, "--benchmark_enable_random_interleaving") ||
+                                     (rank != 0 && starts_with(a, "--benchmark_out"));
+                            }),
+             args.end());
   int count = static_cast<int>(args.size());
   args.push_back(nullptr);
   benchmark::Initialize(&count, args.data());

@@ -102,6 +102,7 @@ int run(const Communicator& comm, const Options& o) {
       error = e.what();
     }
     comm.throw_if_any_failed(error);
+    solver.check_checkpoint_pieces();
     if (root)
       std::printf("continuing from %s: step %lld, t = %g s\n", checkpoint_piece(o.restart, 0).c_str(), solver.step_count(),
                   solver.time());
@@ -221,6 +222,11 @@ int run(const Communicator& comm, const Options& o) {
 
 int run_main(int argc, char** argv) {
   const Communicator comm;
+  // Process 0 prints for all (--help, --print-case, the table); the others' output would repeat it.
+  if (comm.rank() != 0) {
+    std::FILE* quiet = std::freopen("/dev/null", "w", stdout);
+    (void)quiet;  // if /dev/null cannot be opened, freopen has closed stdout: silent all the same
+  }
   Options o;
   mpsfsi_examples::CaseOptions cli("dam_break_mpi", "Dam break of a water column (Martin & Moyce 1952) on MPI processes");
   using mpsfsi_examples::positive;

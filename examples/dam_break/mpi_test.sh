@@ -49,7 +49,11 @@ echo "continued from the checkpoint at t = 0.025 s on 2 processes: the same file
 # run says how to continue, and it continues.
 OMP_NUM_THREADS=1 "$mpiexec" -np 2 "$@" "$distributed" --end 100 --out "$out/term" > "$out/term.log" 2>&1 &
 pid=$!
-sleep 2
+for _ in $(seq 300); do  # until the run has taken its first steps (at most 30 s)
+  grep -q "^step " "$out/term.log" 2>/dev/null && break
+  sleep 0.1
+done
+sleep 0.5
 kill -TERM "$pid"
 set +e
 wait "$pid"

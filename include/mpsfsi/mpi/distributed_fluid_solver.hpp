@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -33,13 +34,18 @@ inline namespace MPSFSI_ABI {
 
 // Wall-clock seconds of the last step on this process, by phase.
 struct DistributedStepTimings {
-  double distribute = 0;  // migration, rebalancing, halo and neighbour search
+  double distribute = 0;  // migration + halo + search:
+  double migration = 0;   // the global time step, migration, and a recut and second migration when the load is uneven
+  double halo = 0;        // the halo build
+  double search = 0;      // the neighbour lists over owned + ghost particles
   double predictor = 0, ppe_assembly = 0, ppe_solve = 0, corrector = 0;
   double total() const { return distribute + predictor + ppe_assembly + ppe_solve + corrector; }
 };
 
 // What this process sent to other processes, point to point, in the last step. The reductions
-// (time step, load balance, flood fill) and hypre's own messages in the PPE solve are not counted.
+// (time step, load balance, flood fill), the all-to-all exchanges of message counts (one per
+// migration and per halo build) and hypre's own messages in the PPE solve are not counted. After
+// a step that threw, it holds what that step had counted.
 struct DistributedStepTraffic {
   std::size_t migrated = 0, migration_bytes = 0;  // particles sent by migration and rebalancing
   std::size_t ghosts = 0;                         // ghosts this process received
@@ -126,9 +132,11 @@ class DistributedFluidSolver {
     traffic_ = DistributedStepTraffic{};
     const std::size_t halo_bytes_before = halo_.total_bytes_sent(), halo_messages_before = halo_.total_messages_sent();
     const double dt = choose_dt();  // from the owned particles, before any ghost exists
-    redistribute();
+    const auto start = tick;
+    redistribute(tick);
     update_neighbors();
-    timings_.distribute = lap_time(tick);
+    timings_.search = lap_time(tick);
+    timings_.distribute = std::chrono::duration<double>(tick - start).count();
     const auto& x = set_.positions();
     auto& u = set_.velocities();
     const auto& kind = set_.kinds();
@@ -268,6 +276,25 @@ class DistributedFluidSolver {
     a.value(rebalances_);
   }
   void checkpoint_restored() { owned_ = set_.size(); }
+  // Collective, after every process has read its file (read_checkpoint, with a failure on any
+  // process passed to all by Communicator::throw_if_any_failed): throws InvalidInput on every
+  // process unless the files are pieces of one checkpoint, with the same step, time and
+  // decomposition on every process and the run's particle count between them. Pieces of two
+  // checkpoints (a run killed while it wrote over an older one's files) would otherwise send the
+  // processes different ways.
+  void check_checkpoint_pieces() const {
+    std::uint64_t time_bits = 0;
+    std::memcpy(&time_bits, &time_, sizeof time_bits);
+    std::vector<std::uint64_t> low = {static_cast<std::uint64_t>(step_count_), time_bits, rcb_.fingerprint()}, high = low;
+    comm_.min_in_place(low);
+    comm_.max_in_place(high);
+    const auto held = static_cast<std::size_t>(comm_.sum(static_cast<std::int64_t>(set_.size())));
+    if (low != high || held != total_particles_)
+      detail::throw_invalid("DistributedFluidSolver",
+                            "the checkpoint's files are not pieces of one checkpoint: their steps, times or "
+                            "decompositions differ, or they hold " +
+                                std::to_string(held) + " particles of " + std::to_string(total_particles_));
+  }
 
   // Collective: steps until the simulated time reaches end_time.
   void advance_to(double end_time) {
@@ -338,7 +365,7 @@ class DistributedFluidSolver {
 
   // Particles move to the boxes that hold them; the boxes are recut when the load is uneven.
   // Then the ghosts of this step.
-  void redistribute() {
+  void redistribute(clock::time_point& tick) {
     traffic_.migrated = migrate(comm_, rcb_, set_);
     if (load_imbalance(comm_, set_.size()) > rebalance_threshold) {
       rcb_.build(comm_, set_.positions(), set_.size());
@@ -347,8 +374,10 @@ class DistributedFluidSolver {
       ++rebalances_;
     }
     traffic_.migration_bytes = traffic_.migrated * set_.packed_size();
+    timings_.migration = lap_time(tick);
     halo_.build(comm_, rcb_, set_, search_.radius());
     owned_ = halo_.owned();
+    timings_.halo = lap_time(tick);
   }
 
   // As FluidSolver::update_neighbors, over owned + ghost particles.

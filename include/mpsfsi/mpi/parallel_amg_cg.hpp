@@ -50,7 +50,7 @@ class ParallelAmgCg {
   struct Timings {
     double matrix = 0;  // the IJ matrix and vectors (hypre's ParCSR, ghost columns exchanged)
     double setup = 0;   // the BoomerAMG hierarchy
-    double solve = 0;   // the CG iterations, and the solution copied back
+    double solve = 0;   // the CG iterations, the solution copied back and hypre's objects freed
   };
 
   double strong_threshold = 0.5;  // BoomerAMG's strength threshold (hypre's default: 0.25)

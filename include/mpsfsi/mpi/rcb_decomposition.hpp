@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -163,15 +164,47 @@ class RcbDecomposition {
       detail::throw_invalid("RcbDecomposition", "the checkpoint's decomposition is for " +
                                                     std::to_string(nodes_.empty() ? 0 : nodes_[0].ranks) +
                                                     " processes, this run has " + std::to_string(processes));
-    // Children come after their parent (as build() makes them), so that no tree read back loops.
-    for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    // The tree build() makes: node 0 holds every process; an inner node's two children come after
+    // it, have no other parent, split its processes in order, and its cut is finite; a leaf holds
+    // one process. Anything else (a crafted or mis-written file) is refused before it is used.
+    std::vector<int> parents(nodes_.size(), 0);
+    bool valid = nodes_[0].first_rank == 0;
+    for (std::size_t k = 0; k < nodes_.size() && valid; ++k) {
       const Node& n = nodes_[k];
-      const auto after = [&](int child) { return child > static_cast<int>(k) && child < static_cast<int>(nodes_.size()); };
-      if (n.first_rank < 0 || n.ranks < 1 || n.first_rank + n.ranks > processes ||
-          (n.left < 0 ? n.right >= 0 || n.ranks != 1 : !after(n.left) || !after(n.right) || n.axis < 0 || n.axis >= Dim))
-        detail::throw_invalid("RcbDecomposition", "the checkpoint's decomposition is not a tree of cuts");
+      const auto child = [&](int c) { return c > static_cast<int>(k) && c < static_cast<int>(nodes_.size()); };
+      valid = n.first_rank >= 0 && n.ranks >= 1 && n.ranks <= processes - n.first_rank;
+      if (!valid) break;
+      if (n.left < 0) {
+        valid = n.right < 0 && n.ranks == 1;
+        continue;
+      }
+      valid = n.ranks >= 2 && child(n.left) && child(n.right) && n.left != n.right && n.axis >= 0 && n.axis < Dim &&
+              std::isfinite(n.cut);
+      if (!valid) break;
+      const Node& low = nodes_[static_cast<std::size_t>(n.left)];
+      const Node& high = nodes_[static_cast<std::size_t>(n.right)];
+      valid = ++parents[static_cast<std::size_t>(n.left)] == 1 && ++parents[static_cast<std::size_t>(n.right)] == 1 &&
+              low.first_rank == n.first_rank && low.ranks >= 1 && low.ranks < n.ranks &&
+              high.first_rank == n.first_rank + low.ranks && high.ranks == n.ranks - low.ranks;
     }
+    if (!valid) detail::throw_invalid("RcbDecomposition", "the checkpoint's decomposition is not a tree of cuts");
     make_boxes();
+  }
+
+  // A hash of the tree (FNV-1a over every node's numbers and cut), equal on every process that
+  // holds the same tree: checkpoint pieces are compared by it.
+  std::uint64_t fingerprint() const {
+    std::uint64_t h = 14695981039346656037ull;
+    const auto mix = [&h](std::uint64_t v) {
+      for (int b = 0; b < 8; ++b) h = (h ^ ((v >> (8 * b)) & 0xFFu)) * 1099511628211ull;
+    };
+    for (const Node& n : nodes_) {
+      for (const int v : {n.first_rank, n.ranks, n.axis, n.left, n.right}) mix(static_cast<std::uint64_t>(static_cast<std::int64_t>(v)));
+      std::uint64_t cut_bits = 0;
+      std::memcpy(&cut_bits, &n.cut, sizeof cut_bits);
+      mix(cut_bits);
+    }
+    return h;
   }
 
   int ranks() const { return static_cast<int>(boxes_.size()); }
