@@ -21,6 +21,7 @@
 
 #include "common/case_options.hpp"
 #include "common/run_checkpoints.hpp"
+#include "output_state.hpp"
 
 using namespace mpsfsi;
 
@@ -37,24 +38,7 @@ struct Options {
   std::string out = "out/dam_break";
 };
 
-// What the output loop has done so far, saved with the solver in each checkpoint so that a
-// restarted run writes the same files as one run straight through.
-struct OutputState {
-  long long frames = 0;              // snapshots written
-  double next_output = 0;            // simulated time of the next one
-  double wall = 0;                   // wall seconds in the solver so far (the CSV's wall_s)
-  std::vector<double> frame_times;   // simulated time of each snapshot (the PVD index)
-  std::uint64_t csv_rows = 0;        // rows of dam_break.csv
-
-  template <class Archive>
-  void checkpoint_state(Archive& a) {
-    a.value(frames);
-    a.value(next_output);
-    a.value(wall);
-    a.array(frame_times);
-    a.value(csv_rows);
-  }
-};
+using dam_break_example::OutputState;
 
 template <int Dim>
 int run(const Options& o) {

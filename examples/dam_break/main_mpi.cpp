@@ -26,6 +26,7 @@
 
 #include "common/case_options.hpp"
 #include "common/run_checkpoints.hpp"
+#include "output_state.hpp"
 
 using namespace mpsfsi;
 
@@ -51,25 +52,7 @@ ParticleSet<Dim> my_part(const Communicator& comm, double a, double l0) {
   return mine;
 }
 
-// What the output loop has done so far, saved with the solver in each process's checkpoint so
-// that a continued run writes the same files as one run straight through (process 0's CSV rows
-// and the .pvd's times; the other values are the same on every process).
-struct OutputState {
-  long long frames = 0;             // snapshots written
-  double next_output = 0;           // simulated time of the next one
-  double wall = 0;                  // wall seconds in the solver so far (the CSV's wall_s)
-  std::vector<double> frame_times;  // simulated time of each snapshot (the PVD index)
-  std::uint64_t csv_rows = 0;       // rows of dam_break.csv (process 0)
-
-  template <class Archive>
-  void checkpoint_state(Archive& a) {
-    a.value(frames);
-    a.value(next_output);
-    a.value(wall);
-    a.array(frame_times);
-    a.value(csv_rows);
-  }
-};
+using dam_break_example::OutputState;
 
 // The file of this process in a checkpoint: <stem>_p<rank>.bin. --restart takes the stem, or
 // any one of the files.
