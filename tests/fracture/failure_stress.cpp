@@ -1,6 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "mpsfsi/fracture/failure_criteria.hpp"
 #include "mpsfsi/fracture/failure_stress.hpp"
 #include "mpsfsi/kernels/weight.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
@@ -86,6 +92,89 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a cut-out neighbour weighs the part
   CHECK(read_at_i() == doctest::Approx((1e6 * self + 3e6 * w_k) / (self + all)).epsilon(1e-12));
   readout.mark_cut_out(k, x.size());
   CHECK(read_at_i() == doctest::Approx(1e6 * (self + w_k) / (self + all)).epsilon(1e-12));
+}
+
+// The screened read averages only where the highest bound over a particle's neighbourhood reaches
+// the strength. A bar in tension rising from 0 at the left end to 2 MPa at the right, with noise,
+// strength 1.6 MPa: the left part is screened out. Where read_screened() computed a tensor it is
+// read()'s to the bit, where it did not sigma_1 of read()'s is below the strength (the screen is
+// sound), and complete() fills in read()'s tensors to the bit, also after bonds are cut. A NaN
+// sample anywhere screens nothing out.
+TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read where failure is possible", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  const double l0 = 0.01, re = 2.1 * l0, length = 0.2, strength = 1.6e6;
+  Vec<Dim> upper = Vec<Dim>::Constant(0.04);
+  upper[0] = length;
+  const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
+  const auto& x = block.positions();
+  const std::size_t n = x.size();
+  BondList<Dim> bonds;
+  bonds.template build<KoshizukaWeight>(x, std::vector<std::int32_t>(n, 0), re);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> noise(-5e4, 5e4);
+  MatArray<Dim, double> point(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    Mat<Dim> t;
+    for (int a = 0; a < Dim; ++a)
+      for (int b = 0; b <= a; ++b) t(a, b) = t(b, a) = noise(random);
+    t(0, 0) += 2e6 * x[k][0] / length;
+    point[k] = t;
+  }
+  typename FailureStressReadout<Dim>::Settings settings;
+  settings.l0 = l0;
+  settings.self_weight = KoshizukaWeight::value(l0, re);
+  const auto unloaded = [](std::size_t) { return false; };
+  const auto bound = [](const Mat<Dim>& t) { return MaxPrincipalStress::upper_bound<Dim, double>(t); };
+  const auto may_fail = [&](std::size_t, double b) { return !(b < strength); };
+  const auto sigma_1 = [](const Mat<Dim>& t) {
+    Vec<Dim> direction;
+    return MaxPrincipalStress::principal<Dim, double>(t, direction);
+  };
+  const auto same_bits = [](const Mat<Dim>& a, const Mat<Dim>& b) {
+    return std::memcmp(a.data(), b.data(), sizeof(double) * Dim * Dim) == 0;
+  };
+
+  for (const bool cut_some : {false, true}) {
+    CAPTURE(cut_some);
+    FailureStressReadout<Dim> full, screened;
+    full.read(point, x, x, bonds, nullptr, unloaded, settings);  // first reads: the same weights
+    screened.read(point, x, x, bonds, nullptr, unloaded, settings);
+    if (cut_some)  // every third particle's first bond, cut after the first read
+      for (std::size_t i = 0; i < n; i += 3) bonds.cut(bonds.begin(i));
+    const MatArray<Dim, double> expected = full.read(point, x, x, bonds, nullptr, unloaded, settings);
+    const auto& got = screened.read_screened(point, x, x, bonds, nullptr, unloaded, settings, bound, may_fail);
+    std::size_t left_out = 0, differ = 0, unsound = 0, may_fail_count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      may_fail_count += sigma_1(expected[i]) >= strength ? 1 : 0;
+      if (screened.evaluated(i)) {
+        differ += same_bits(got[i], expected[i]) ? 0 : 1;
+      } else {
+        ++left_out;
+        unsound += sigma_1(expected[i]) < strength ? 0 : 1;
+      }
+    }
+    CHECK(may_fail_count > 0);
+    CHECK(left_out == screened.screened_out());
+    CHECK(left_out > n / 2);  // sigma_xx reaches 1.6 MPa at 0.8 of the length
+    CHECK(left_out < n);
+    CHECK(differ == 0);
+    CHECK(unsound == 0);
+    screened.complete(point, bonds);
+    differ = 0;
+    for (std::size_t i = 0; i < n; ++i) differ += same_bits(got[i], expected[i]) ? 0 : 1;
+    CHECK(differ == 0);
+    CHECK(screened.screened_out() == 0);
+  }
+
+  // A NaN at the left end, where everything else would be screened out.
+  std::size_t nan_at = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (x[k][0] < x[nan_at][0]) nan_at = k;
+  point[nan_at](0, 1) = std::numeric_limits<double>::quiet_NaN();
+  FailureStressReadout<Dim> screened;
+  screened.read_screened(point, x, x, bonds, nullptr, unloaded, settings, bound, may_fail);
+  CHECK(screened.screened_out() == 0);
 }
 
 }

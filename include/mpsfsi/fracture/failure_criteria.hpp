@@ -30,8 +30,11 @@ inline namespace MPSFSI_ABI {
 //   template <int Dim, class Scalar> Scalar upper_bound(const Mat<Dim, Scalar>& sigma) const;  // or static
 // a value never below principal()'s, cheaper to compute: where it is below the particle's
 // strength the particle cannot fail, and the check leaves principal() for the output field
-// (FractureProcess). The criteria below carry no parameters and cost what a static function
-// does.
+// (FractureProcess). A model whose bound is also a convex function of sigma may say so,
+//   static constexpr bool upper_bound_is_convex = true;
+// and the check then averages the read-out (failure_stress.hpp) only where the highest bound over
+// a particle's neighbourhood reaches its strength. The criteria below carry no parameters and
+// cost what a static function does.
 
 // NoFailure, the null object (nothing ever fails), is solid/failure_slot.hpp's: the default of
 // every solid, with or without this folder.
@@ -48,7 +51,9 @@ struct MaxPrincipalStress {
   // eigenvalues s_k of s sum to zero, and the largest of d numbers with zero sum and sum of
   // squares |s|_F^2 is at most sqrt((d-1)/d) |s|_F (equality when the other d-1 are equal; in 2D
   // the bound is Mohr's radius, exact). In 3D it costs a tenth of the eigen-decomposition. The
-  // last term covers the round-off of both evaluations.
+  // last term covers the round-off of both evaluations. Convex: m is linear in sigma, |s|_F is a
+  // norm of a linear function of sigma, and |m| is convex.
+  static constexpr bool upper_bound_is_convex = true;
   template <int Dim, class Scalar>
   static Scalar upper_bound(const Mat<Dim, Scalar>& sigma) {
     const Scalar mean = sigma.trace() / Dim;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -68,35 +70,101 @@ class FailureStressReadout {
   const MatArray<Dim, double>& read(const MatArray<Dim, double>& point, const VecArray<Dim, double>& x,
                                     const VecArray<Dim, double>& reference, const BondList<Dim, double>& bonds,
                                     const fit_type* fit, Loaded&& loaded, const Settings& s) {
-    const std::size_t n = x.size();
-    const bool at_surface = fit != nullptr;
-    if (initial_weight_.size() != bonds.num_bonds()) {
-      initial_weight_.resize(bonds.num_bonds());
-      for (std::size_t b = 0; b < initial_weight_.size(); ++b) initial_weight_[b] = bonds.weight(static_cast<Offset>(b));
+    const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s);
+    if (!s.average) return sampled;
+    begin_averaging(s, fit != nullptr);
+    average_pass(point, bonds, sampled, false, averaged_, nullptr);
+    if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, nullptr);
+    return at_surface_ ? smoothed_ : averaged_;
+  }
+
+  // The same read, averaged only where a particle may need it: `bound(sigma)`, a convex upper
+  // bound of the criterion's value (a weighted average of tensors then bounds no higher than the
+  // highest of them), and `may_fail(i, b)`, whether particle i can fail when b bounds the value of
+  // its read tensor. An average (and the second, along the face) is a convex combination of the
+  // particle's and its bonded neighbours' samples, so the largest bound over the particle's
+  // neighbourhood (its neighbours' for the second pass) bounds its read. Where that rules failure
+  // out, the read is left for complete(): evaluated(i) says where the returned tensors hold.
+  // complete(), given the same `point` and `bonds` as they were at this call (FractureProcess
+  // completes before anything changes them), gives to the bit the tensors read() would have.
+  template <class Loaded, class Bound, class MayFail>
+  const MatArray<Dim, double>& read_screened(const MatArray<Dim, double>& point, const VecArray<Dim, double>& x,
+                                             const VecArray<Dim, double>& reference,
+                                             const BondList<Dim, double>& bonds, const fit_type* fit, Loaded&& loaded,
+                                             const Settings& s, Bound&& bound, MayFail&& may_fail) {
+    const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s);
+    if (!s.average) return sampled;
+    begin_averaging(s, fit != nullptr);
+    const std::size_t n = point.size();
+    sample_bound_.resize(n);
+    reach_bound_.resize(n);
+    needed_.resize(n);
+    first_pass_needed_.resize(n);
+    // The bounds of both samples of every particle (interior averages read the centre stress,
+    // face averages the surface one), and the largest magnitude among them: the averages'
+    // round-off, a few ulps of it, is covered by a margin of 1e-9 of that (the bound's own
+    // slack covers only its own evaluation; docs/theory.md, 5.1). A sample whose bound or norm is
+    // NaN screens nothing out.
+    double largest_norm = 0;
+    int not_a_number = 0;
+    MPSFSI_OMP(parallel for schedule(static) reduction(max : largest_norm) reduction(| : not_a_number))
+    for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(n); ++kk) {
+      const auto k = static_cast<std::size_t>(kk);
+      const bool outside = at_surface_ && read_outside_[k];
+      const double centre_bound = bound(point[k]), centre_norm = point[k].norm();
+      const double surface_bound = outside ? bound(sampled[k]) : centre_bound;
+      const double surface_norm = outside ? sampled[k].norm() : centre_norm;
+      // NaN if any of them is (or if infinities of both signs meet: screened off as well).
+      not_a_number |= std::isnan(centre_bound + surface_bound + centre_norm + surface_norm) ? 1 : 0;
+      sample_bound_[k] = std::max(centre_bound, surface_bound);
+      largest_norm = std::max(largest_norm, std::max(centre_norm, surface_norm));
     }
-    if (at_surface) {
-      if (normal_.size() != n) structure_normals(bonds, reference, s.n0, kSurfaceThreshold, normal_, on_surface_);
-      read_outside_.resize(n);
-      surface_stress_.resize(n);
-      MPSFSI_OMP(parallel for schedule(static))
-      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
-        const auto i = static_cast<std::size_t>(ii);
-        read_outside_[i] = on_surface_[i] && !loaded(i) ? 1 : 0;
-        surface_stress_[i] = read_outside_[i] ? detail::cauchy_from_svk(
-                                                    fit->gradient_at(fit->affine(x, bonds, i), 0.5 * s.l0 * normal_[i]), s.lame)
-                                              : point[i];
-      }
+    const double margin = 1e-9 * largest_norm;
+    neighbourhood_highest(bonds, sample_bound_, reach_bound_, nullptr);  // bounds the first pass
+    if (at_surface_) {  // bounds the second, along the face
+      neighbourhood_highest(bonds, reach_bound_, sample_bound_, &read_outside_);
+      reach_bound_.swap(sample_bound_);
     }
-    const auto& sampled = at_surface ? surface_stress_ : point;
-    if (!s.average) {
-      last_ = at_surface ? Last::surface : Last::point;
-      return sampled;
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      needed_[i] = not_a_number || may_fail(i, reach_bound_[i] + margin) ? 1 : 0;
     }
-    average_pass(point, sampled, bonds, s.self_weight, at_surface, false, averaged_);
-    last_ = at_surface ? Last::smoothed : Last::averaged;
-    if (!at_surface) return averaged_;
-    average_pass(point, averaged_, bonds, s.self_weight, true, true, smoothed_);
-    return smoothed_;
+    // The second pass of a needed particle reads the first of its face neighbours: bonds are
+    // symmetric, so a particle's first pass is needed where it or a bonded neighbour is.
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(n); ++kk) {
+      const auto k = static_cast<std::size_t>(kk);
+      std::uint8_t need = needed_[k];
+      if (at_surface_)
+        for (Offset b = bonds.begin(k); b < bonds.end(k) && !need; ++b)
+          need = needed_[static_cast<std::size_t>(bonds.neighbor(b))];
+      first_pass_needed_[k] = need;
+    }
+    average_pass(point, bonds, sampled, false, averaged_, &first_pass_needed_);
+    if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, &needed_);
+    pending_ = true;
+    return at_surface_ ? smoothed_ : averaged_;
+  }
+
+  // Whether the last read_screened() computed particle i's tensor (always true after read() and
+  // complete()).
+  bool evaluated(std::size_t i) const { return !pending_ || needed_[i] != 0; }
+
+  // Fills the tensors read_screened() left out, from the same `point` and `bonds` it was given.
+  void complete(const MatArray<Dim, double>& point, const BondList<Dim, double>& bonds) {
+    if (!pending_) return;
+    average_pass(point, bonds, at_surface_ ? surface_stress_ : point, false, averaged_, &first_pass_needed_, true);
+    if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, &needed_, true);
+    pending_ = false;
+  }
+
+  // The number of particles whose read the last read_screened() left out.
+  std::size_t screened_out() const {
+    if (!pending_) return 0;
+    std::size_t count = 0;
+    for (const auto need : needed_) count += need ? 0 : 1;
+    return count;
   }
 
   // The tensors the last read() returned, when they are the read-out's own (kept until the next
@@ -118,6 +186,7 @@ class FailureStressReadout {
     a.array(initial_weight_);
     a.array(on_surface_);
     cut_out_.clear();  // FractureProcess marks them again from its record
+    pending_ = false;
   }
 
   // Particle i has been cut out (see above); n: the particle count.
@@ -138,23 +207,76 @@ class FailureStressReadout {
     return read_outside_[k] != 0 && normal_[i].dot(normal_[k]) >= kSameFace;
   }
 
+  // The surface samples (at the centre where not read outside), and what every read starts from.
+  template <class Loaded>
+  const MatArray<Dim, double>& sample(const MatArray<Dim, double>& point, const VecArray<Dim, double>& x,
+                                      const VecArray<Dim, double>& reference, const BondList<Dim, double>& bonds,
+                                      const fit_type* fit, Loaded&& loaded, const Settings& s) {
+    const std::size_t n = x.size();
+    const bool at_surface = fit != nullptr;
+    pending_ = false;
+    if (initial_weight_.size() != bonds.num_bonds()) {
+      initial_weight_.resize(bonds.num_bonds());
+      for (std::size_t b = 0; b < initial_weight_.size(); ++b) initial_weight_[b] = bonds.weight(static_cast<Offset>(b));
+    }
+    if (at_surface) {
+      if (normal_.size() != n) structure_normals(bonds, reference, s.n0, kSurfaceThreshold, normal_, on_surface_);
+      read_outside_.resize(n);
+      surface_stress_.resize(n);
+      MPSFSI_OMP(parallel for schedule(static))
+      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
+        read_outside_[i] = on_surface_[i] && !loaded(i) ? 1 : 0;
+        surface_stress_[i] = read_outside_[i] ? detail::cauchy_from_svk(
+                                                    fit->gradient_at(fit->affine(x, bonds, i), 0.5 * s.l0 * normal_[i]), s.lame)
+                                              : point[i];
+      }
+    }
+    last_ = at_surface ? Last::surface : Last::point;
+    return at_surface ? surface_stress_ : point;
+  }
+
+  void begin_averaging(const Settings& s, bool at_surface) {
+    self_weight_ = s.self_weight;
+    at_surface_ = at_surface;
+    last_ = at_surface ? Last::smoothed : Last::averaged;
+  }
+
+  // out[i]: the highest of in[] over particle i and its bonded neighbours, cut or not; with
+  // `only`, just where it is set (elsewhere in[i]).
+  static void neighbourhood_highest(const BondList<Dim, double>& bonds, const std::vector<double>& in,
+                                    std::vector<double>& out, const std::vector<std::uint8_t>* only) {
+    const Offset* const offsets = bonds.offsets().data();
+    const Index* const neighbor = bonds.neighbors().data();
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(in.size()); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      double h = in[i];
+      if (!only || (*only)[i])
+        for (Offset b = offsets[i]; b < offsets[i + 1]; ++b) h = std::max(h, in[static_cast<std::size_t>(neighbor[b])]);
+      out[i] = h;
+    }
+  }
+
   // One averaging pass into `out`: particles read outside average `in` along their face; the
   // others (all of them without surface reading) average the centre stresses over all bonds,
-  // or, with `surface_only`, keep `in`.
-  void average_pass(const MatArray<Dim, double>& point, const MatArray<Dim, double>& in,
-                    const BondList<Dim, double>& bonds, double self_weight, bool at_surface, bool surface_only,
-                    MatArray<Dim, double>& out) const {
+  // or, with `surface_only`, keep `in`. With `only`, just the particles it marks (or, with
+  // `rest`, just the others).
+  void average_pass(const MatArray<Dim, double>& point, const BondList<Dim, double>& bonds,
+                    const MatArray<Dim, double>& in, bool surface_only, MatArray<Dim, double>& out,
+                    const std::vector<std::uint8_t>* only, bool rest = false) {
     const std::size_t n = point.size();
     out.resize(n);
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
-      const bool along_face = at_surface && read_outside_[i] != 0;
+      if (only && ((*only)[i] != 0) == rest) continue;
+      const bool along_face = at_surface_ && read_outside_[i] != 0;
       if (surface_only && !along_face) {
         out[i] = in[i];
         continue;
       }
-      double own = self_weight;
+      double own = self_weight_;
       mat_type sum = mat_type::Zero();
       double weight = 0;
       for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
@@ -181,6 +303,14 @@ class FailureStressReadout {
   std::vector<std::uint8_t> on_surface_, read_outside_;
   MatArray<Dim, double> surface_stress_, averaged_, smoothed_;
   std::vector<std::uint8_t> cut_out_;  // empty until the first CrackSide::slab failure
+  // The settings of the last averaged read (complete() averages with them again).
+  double self_weight_ = 0;
+  bool at_surface_ = false;
+  // read_screened(): the bounds, which particles' reads (and first passes) it computed, and
+  // whether it left some out.
+  std::vector<double> sample_bound_, reach_bound_;
+  std::vector<std::uint8_t> needed_, first_pass_needed_;
+  bool pending_ = false;
 };
 
 }  // namespace MPSFSI_ABI

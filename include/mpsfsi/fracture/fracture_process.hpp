@@ -108,10 +108,21 @@ class FractureProcess {
     const bool slab = s.crack_side == CrackSide::slab;
     if (slab && readout_.cut_out_marks() != n)  // after a checkpoint was read: from the record
       for (const auto& e : log_) readout_.mark_cut_out(e.particle, n);
-    const auto& sigma = readout_.read(s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout);
     failing_.clear();
     const auto& strength = s.set.field(strength_);
     auto& read = s.set.field(failure_stress_);
+    const auto candidate = [&](std::size_t i) { return !fixed(i) && s.bonds.intact_count(i) > 0; };
+    // With a convex bound, the averages are computed only where the bound of the particle's
+    // neighbourhood reaches its strength (FailureStressReadout::read_screened).
+    const auto& sigma = [&]() -> const MatArray<Dim, double>& {
+      if constexpr (detail::has_convex_failure_bound<Failure, Dim>::value)
+        return readout_.read_screened(
+            s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout,
+            [&](const Mat<Dim, double>& t) { return failure_.template upper_bound<Dim, double>(t); },
+            [&](std::size_t i, double bound) { return candidate(i) && !(bound < strength[i]); });
+      else
+        return readout_.read(s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout);
+    }();
     // With the model's upper bound, a particle whose bound is below its strength cannot fail and
     // its principal() is left for refresh_output(). That reads the tensors later, so only when
     // they are the read-out's own: the stress field itself is recomputed after a cut.
@@ -126,9 +137,10 @@ class FractureProcess {
         const auto i = static_cast<std::size_t>(ii);
         read[i] = 0;
         unevaluated_[i] = 0;
-        if (fixed(i) || s.bonds.intact_count(i) == 0) continue;
+        if (!candidate(i)) continue;
         if constexpr (detail::has_failure_upper_bound<Failure, Dim>::value) {
-          if (deferred_ && failure_.template upper_bound<Dim, double>(sigma[i]) < strength[i]) {
+          if (deferred_ &&
+              (!readout_.evaluated(i) || failure_.template upper_bound<Dim, double>(sigma[i]) < strength[i])) {
             unevaluated_[i] = 1;
             continue;
           }
@@ -144,6 +156,7 @@ class FractureProcess {
       failing_.insert(failing_.end(), mine.begin(), mine.end());
     }
     if (failing_.empty()) return false;
+    readout_.complete(s.stresses, s.bonds);  // the read before the cuts, for the output field
     std::sort(failing_.begin(), failing_.end(), [](const Failing& a, const Failing& b) {
       return a.sigma1 > b.sigma1 || (a.sigma1 == b.sigma1 && a.particle < b.particle);
     });
@@ -164,16 +177,19 @@ class FractureProcess {
   const std::vector<FailureEvent<Dim>>& log() const { return log_; }
   double first_failure_time() const { return first_failure_time_; }
   const std::vector<double>& strengths(const ParticleSet<Dim>& set) const { return set.field(strength_); }
-  const std::vector<double>& criterion_stresses(ParticleSet<Dim>& set) {
-    refresh_output(set);
+  const std::vector<double>& criterion_stresses(ParticleSet<Dim>& set, const MatArray<Dim, double>& stresses,
+                                               const BondList<Dim, double>& bonds) {
+    refresh_output(set, stresses, bonds);
     return set.field(failure_stress_);
   }
 
   // Fills the `failure_stress` field where the last check ruled failure out by the upper bound:
   // principal() of the tensor that check read (ElasticSolver calls it before output and
   // checkpoints). Until the next check, the read-out keeps those tensors.
-  void refresh_output(ParticleSet<Dim>& set) {
+  void refresh_output(ParticleSet<Dim>& set, const MatArray<Dim, double>& stresses,
+                      const BondList<Dim, double>& bonds) {
     if (!deferred_) return;
+    readout_.complete(stresses, bonds);
     const auto& sigma = *readout_.last_read();
     auto& read = set.field(failure_stress_);
     MPSFSI_OMP(parallel for schedule(static))

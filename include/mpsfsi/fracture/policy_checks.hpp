@@ -29,6 +29,11 @@ struct has_failure_principal<F, Dim, Direction,
                                  std::declval<const Mat<Dim, double>&>(), std::declval<Direction>())))>>
     : std::true_type {};
 
+template <class F, class = void>
+struct has_convexity_flag : std::false_type {};
+template <class F>
+struct has_convexity_flag<F, std::void_t<decltype(bool(F::upper_bound_is_convex))>> : std::true_type {};
+
 // The optional upper_bound(sigma) (failure_criteria.hpp).
 template <class F, int Dim, class = void>
 struct has_failure_upper_bound : std::false_type {};
@@ -36,6 +41,19 @@ template <class F, int Dim>
 struct has_failure_upper_bound<F, Dim,
                                std::void_t<decltype(double(std::declval<const F&>().template upper_bound<Dim, double>(
                                    std::declval<const Mat<Dim, double>&>())))>> : std::true_type {};
+
+// An upper bound the model declares convex (upper_bound_is_convex = true): the bound of a weighted
+// average of tensors is then at most the largest of theirs, so the averaged read-out can be
+// screened before it is averaged (FailureStressReadout::read_screened).
+template <class F, int Dim>
+struct has_convex_failure_bound {
+  static constexpr bool value = [] {
+    if constexpr (has_failure_upper_bound<F, Dim>::value && has_convexity_flag<F>::value)
+      return bool(F::upper_bound_is_convex);
+    else
+      return false;
+  }();
+};
 
 template <class F, class = void>
 struct names_assign_strengths : std::false_type {};
@@ -56,6 +74,9 @@ constexpr bool check_failure_model() {
   static_assert(!detail::names_assign_strengths<F>::value || detail::has_assign_strengths<F>::value,
                 "failure model's assign_strengths must be `void assign_strengths(const StrengthSetup&, "
                 "std::vector<double>& strength) const`");
+  static_assert(!detail::has_convexity_flag<F>::value || detail::has_failure_upper_bound<F, Dim>::value,
+                "failure model declares `upper_bound_is_convex` but has no `template <int Dim, class Scalar> Scalar "
+                "upper_bound(const Mat<Dim, Scalar>& sigma) const` (or static)");
   return true;
 }
 

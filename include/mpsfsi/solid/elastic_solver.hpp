@@ -270,6 +270,8 @@ class ElasticSolver {
     check_index(c, "impose_crack");
     if (!(normal.norm() > 0) || !normal.allFinite())
       detail::throw_invalid("ElasticSolver::impose_crack", "the crack normal must be a finite non-zero vector");
+    // The last check's read-out completed from the bonds it read, before they change.
+    fracture_.refresh_output(set_, set_.field(stress_field_), bonds_);
     touched_.clear();
     const std::size_t cut = cut_bonds_across_plane(bonds_, set_.positions(), c, vec_type(normal.normalized()),
                                                    p_.crack_half_width(), p_.re(), touched_, scratch_);
@@ -341,7 +343,7 @@ class ElasticSolver {
       principal[i] = max_principal_stress<Dim, double>(sigma[i], direction);
     }
     set_.field(fragment_) = find_fragments(bonds_).label;
-    fracture_.refresh_output(set_);
+    fracture_.refresh_output(set_, set_.field(stress_field_), bonds_);
     return set_;
   }
 
@@ -389,7 +391,9 @@ class ElasticSolver {
   // without a failure model).
   const failure_type& failure_model() const { return fracture_.model(); }
   const std::vector<double>& strengths() const { return fracture_.strengths(set_); }
-  const std::vector<double>& criterion_stresses() { return fracture_.criterion_stresses(set_); }
+  const std::vector<double>& criterion_stresses() {
+    return fracture_.criterion_stresses(set_, set_.field(stress_field_), bonds_);
+  }
 
   // Directed bonds evaluated per force evaluation (the benchmark's unit of work).
   std::size_t bond_evaluations_per_step() const { return bonds_.num_bonds(); }
@@ -403,7 +407,8 @@ class ElasticSolver {
   std::size_t checkpoint_particle_count() const { return set_.size(); }
   template <class Archive>
   void checkpoint_state(Archive& a) {
-    fracture_.refresh_output(set_);  // the `failure_stress` field complete before it is written
+    // The `failure_stress` field complete before it is written.
+    fracture_.refresh_output(set_, set_.field(stress_field_), bonds_);
     set_.checkpoint_state(a);
     a.array(reference_);
     bonds_.checkpoint_state(a);

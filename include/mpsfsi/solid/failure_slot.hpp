@@ -53,8 +53,12 @@ class NoFractureProcess {
   const std::vector<FailureEvent<Dim>>& log() const { return log_; }
   double first_failure_time() const { return -1; }
   const std::vector<double>& strengths(const ParticleSet<Dim>&) const { return none_; }
-  const std::vector<double>& criterion_stresses(const ParticleSet<Dim>&) const { return none_; }
-  void refresh_output(const ParticleSet<Dim>&) const {}
+  template <class... Inputs>
+  const std::vector<double>& criterion_stresses(const ParticleSet<Dim>&, const Inputs&...) const {
+    return none_;
+  }
+  template <class... Inputs>
+  void refresh_output(const ParticleSet<Dim>&, const Inputs&...) const {}
   template <class Archive>
   void checkpoint_state(Archive&) {}
 
