@@ -1,29 +1,20 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // What the dam break's output loop has done so far (dam_break and dam_break_mpi), saved with the
-// solver in each checkpoint so that a restarted run writes the same files as one run straight
-// through. In dam_break_mpi every process saves it; the CSV rows are process 0's, the rest is
-// the same on every process.
+// solver in each checkpoint. In dam_break_mpi every process saves it; the CSV rows are process
+// 0's, the rest is the same on every process.
 #pragma once
 
-#include <cstdint>
-#include <vector>
+#include "common/output_record.hpp"
 
 namespace dam_break_example {
 
-struct OutputState {
-  long long frames = 0;             // snapshots written
-  double next_output = 0;           // simulated time of the next one
-  double wall = 0;                  // wall seconds in the solver so far (the CSV's wall_s)
-  std::vector<double> frame_times;  // simulated time of each snapshot (the PVD index)
-  std::uint64_t csv_rows = 0;       // rows of dam_break.csv
+struct OutputState : mpsfsi_examples::OutputRecord {
+  double wall = 0;  // wall seconds in the solver so far (the CSV's wall_s)
 
   template <class Archive>
   void checkpoint_state(Archive& a) {
-    a.value(frames);
-    a.value(next_output);
+    OutputRecord::checkpoint_state(a);
     a.value(wall);
-    a.array(frame_times);
-    a.value(csv_rows);
   }
 };
 

@@ -9,7 +9,6 @@
 // droplet span the width, y is up. `droplet_on_ice_beam --help` lists the options.
 #include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -29,6 +28,7 @@
 #include <mpsfsi/solid/elastic_solver.hpp>
 
 #include "common/case_options.hpp"
+#include "common/output_record.hpp"
 #include "common/run_checkpoints.hpp"
 #include "three_point_bending/bending_test.hpp"
 
@@ -57,21 +57,13 @@ struct Options {
   std::string out = "out/droplet_on_ice_beam";
 };
 
-// What the output loop has done so far, saved with the coupler in each checkpoint so that a
-// restarted run writes the same files as one run straight through.
-struct OutputState {
-  long long frames = 0;             // snapshots written
-  double next_output = 0;           // simulated time of the next one
-  std::vector<double> frame_times;  // simulated time of each snapshot (the PVD indexes)
-  std::uint64_t tip_rows = 0;       // rows of tip.csv
-  double max_tip = 0;               // largest |tip dy| so far
+// What the output loop has done so far (csv_rows: tip.csv), and the largest |tip dy| so far.
+struct OutputState : mpsfsi_examples::OutputRecord {
+  double max_tip = 0;
 
   template <class Archive>
   void checkpoint_state(Archive& a) {
-    a.value(frames);
-    a.value(next_output);
-    a.array(frame_times);
-    a.value(tip_rows);
+    OutputRecord::checkpoint_state(a);
     a.value(max_tip);
   }
 };
@@ -202,7 +194,7 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
                                                 "force_x", "force_y",         "beam_kinetic_J", "beam_strain_J",
                                                 "fluid_kinetic_J"};
   CsvWriter tip_csv = o.restart.empty() ? CsvWriter(dir + "/tip.csv", tip_columns)
-                                        : CsvWriter::continue_after(dir + "/tip.csv", tip_columns, state.tip_rows);
+                                        : CsvWriter::continue_after(dir + "/tip.csv", tip_columns, state.csv_rows);
   mpsfsi_examples::RunCheckpoints checkpoints(dir, o.checkpoint_every);
   char model[64];
   if (Dim == 2) std::snprintf(model, sizeof model, "plane %s", o.plane.c_str());
@@ -220,7 +212,7 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
     const double t = c.time();
     // Checkpoints at the top of the loop: a restarted run writes this time's outputs again.
     if (checkpoints.due(t) || checkpoints.stop_requested()) {
-      state.tip_rows = tip_csv.rows();
+      state.csv_rows = tip_csv.rows();
       const std::string path = checkpoints.write(c, c.step_count(), t, state);
       std::fprintf(stderr, "checkpoint: %s (t = %g s)\n", path.c_str(), t);
       if (checkpoints.stop_requested()) {

@@ -7,7 +7,6 @@
 // and continues from one. `elastic_gate --help` lists the options.
 #include <cmath>
 #include <cstdio>
-#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -24,6 +23,7 @@
 #include <mpsfsi/solid/elastic_solver.hpp>
 
 #include "common/case_options.hpp"
+#include "common/output_record.hpp"
 #include "common/run_checkpoints.hpp"
 
 using namespace mpsfsi;
@@ -41,23 +41,6 @@ struct Options {
   std::string out = "out/elastic_gate";
   double checkpoint_every = 0;  // s between checkpoints; 0: only on Ctrl-C / SIGTERM
   std::string restart;          // checkpoint to continue from
-};
-
-// What the output loop has done so far, saved with the coupler in each checkpoint so that a
-// restarted run writes the same files as one run straight through.
-struct OutputState {
-  long long frames = 0;             // snapshots written
-  double next_output = 0;           // simulated time of the next one
-  std::vector<double> frame_times;  // simulated time of each snapshot (the PVD index)
-  std::uint64_t csv_rows = 0;       // rows of gate_tip.csv
-
-  template <class Archive>
-  void checkpoint_state(Archive& a) {
-    a.value(frames);
-    a.value(next_output);
-    a.array(frame_times);
-    a.value(csv_rows);
-  }
 };
 
 template <int Dim, class Scheme>
@@ -81,7 +64,7 @@ int run(const Options& o) {
   Coupler coupler(scene.fluid_particles<Dim>(o.l0), fp, std::move(gate), CouplingParameters{}, scheme);
 
   std::filesystem::create_directories(o.out);
-  OutputState state;
+  mpsfsi_examples::OutputRecord state;  // rows: gate_tip.csv
   if (!o.restart.empty()) {
     read_checkpoint(o.restart, coupler, state);
     std::printf("continuing from %s: step %lld, t = %g s\n", o.restart.c_str(), coupler.step_count(), coupler.time());

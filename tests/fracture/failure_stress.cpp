@@ -98,8 +98,9 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a cut-out neighbour weighs the part
 // the strength. A bar in tension rising from 0 at the left end to 2 MPa at the right, with noise,
 // strength 1.6 MPa: the left part is screened out. Where read_screened() computed a tensor it is
 // read()'s to the bit, where it did not sigma_1 of read()'s is below the strength (the screen is
-// sound), and complete() fills in read()'s tensors to the bit, also after bonds are cut. A NaN
-// sample anywhere screens nothing out.
+// sound), and complete() fills in read()'s tensors to the bit, also after bonds are cut before
+// the read; a cut between the read and complete() is refused. A NaN sample anywhere screens
+// nothing out.
 TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read where failure is possible", T,
                    std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
   constexpr int Dim = T::value;
@@ -165,6 +166,17 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
     for (std::size_t i = 0; i < n; ++i) differ += same_bits(got[i], expected[i]) ? 0 : 1;
     CHECK(differ == 0);
     CHECK(screened.screened_out() == 0);
+  }
+
+  // A bond cut between the screened read and complete(): completing would mix the two states.
+  {
+    FailureStressReadout<Dim> screened;
+    screened.read_screened(point, x, x, bonds, nullptr, unloaded, settings, bound, may_fail);
+    REQUIRE(screened.screened_out() > 0);
+    Offset intact = bonds.begin(1);
+    while (!bonds.intact(intact)) ++intact;
+    bonds.cut(intact);
+    CHECK_THROWS_AS(screened.complete(point, bonds), InvalidInput);
   }
 
   // A NaN at the left end, where everything else would be screened out.

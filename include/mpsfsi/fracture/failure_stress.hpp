@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
+#include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
@@ -72,7 +73,6 @@ class FailureStressReadout {
                                     const fit_type* fit, Loaded&& loaded, const Settings& s) {
     const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s);
     if (!s.average) return sampled;
-    begin_averaging(s, fit != nullptr);
     average_pass(point, bonds, sampled, false, averaged_, nullptr);
     if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, nullptr);
     return at_surface_ ? smoothed_ : averaged_;
@@ -94,12 +94,10 @@ class FailureStressReadout {
                                              const Settings& s, Bound&& bound, MayFail&& may_fail) {
     const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s);
     if (!s.average) return sampled;
-    begin_averaging(s, fit != nullptr);
     const std::size_t n = point.size();
     sample_bound_.resize(n);
     reach_bound_.resize(n);
     needed_.resize(n);
-    first_pass_needed_.resize(n);
     // The bounds of both samples of every particle (interior averages read the centre stress,
     // face averages the surface one), and the largest magnitude among them: the averages'
     // round-off, a few ulps of it, is covered by a margin of 1e-9 of that (the bound's own
@@ -131,19 +129,23 @@ class FailureStressReadout {
       needed_[i] = not_a_number || may_fail(i, reach_bound_[i] + margin) ? 1 : 0;
     }
     // The second pass of a needed particle reads the first of its face neighbours: bonds are
-    // symmetric, so a particle's first pass is needed where it or a bonded neighbour is.
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(n); ++kk) {
-      const auto k = static_cast<std::size_t>(kk);
-      std::uint8_t need = needed_[k];
-      if (at_surface_)
+    // symmetric, so a particle's first pass is needed where it or a bonded neighbour is. Without
+    // the second pass, the first is needed where the read is.
+    if (at_surface_) {
+      first_pass_needed_.resize(n);
+      MPSFSI_OMP(parallel for schedule(static))
+      for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(n); ++kk) {
+        const auto k = static_cast<std::size_t>(kk);
+        std::uint8_t need = needed_[k];
         for (Offset b = bonds.begin(k); b < bonds.end(k) && !need; ++b)
           need = needed_[static_cast<std::size_t>(bonds.neighbor(b))];
-      first_pass_needed_[k] = need;
+        first_pass_needed_[k] = need;
+      }
     }
-    average_pass(point, bonds, sampled, false, averaged_, &first_pass_needed_);
+    average_pass(point, bonds, sampled, false, averaged_, &first_pass_needed());
     if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, &needed_);
     pending_ = true;
+    cuts_at_read_ = bonds.num_cut();
     return at_surface_ ? smoothed_ : averaged_;
   }
 
@@ -152,9 +154,13 @@ class FailureStressReadout {
   bool evaluated(std::size_t i) const { return !pending_ || needed_[i] != 0; }
 
   // Fills the tensors read_screened() left out, from the same `point` and `bonds` it was given.
+  // Throws InvalidInput if a bond has been cut since: the read would then mix two states (a
+  // caller that cuts bonds completes the read first).
   void complete(const MatArray<Dim, double>& point, const BondList<Dim, double>& bonds) {
     if (!pending_) return;
-    average_pass(point, bonds, at_surface_ ? surface_stress_ : point, false, averaged_, &first_pass_needed_, true);
+    if (bonds.num_cut() != cuts_at_read_)
+      detail::throw_invalid("FailureStressReadout::complete", "bonds were cut after the read it completes");
+    average_pass(point, bonds, at_surface_ ? surface_stress_ : point, false, averaged_, &first_pass_needed(), true);
     if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, &needed_, true);
     pending_ = false;
   }
@@ -215,6 +221,13 @@ class FailureStressReadout {
     const std::size_t n = x.size();
     const bool at_surface = fit != nullptr;
     pending_ = false;
+    // The settings complete() averages with again, and what the read returns.
+    self_weight_ = s.self_weight;
+    at_surface_ = at_surface;
+    if (s.average)
+      last_ = at_surface ? Last::smoothed : Last::averaged;
+    else
+      last_ = at_surface ? Last::surface : Last::point;
     if (initial_weight_.size() != bonds.num_bonds()) {
       initial_weight_.resize(bonds.num_bonds());
       for (std::size_t b = 0; b < initial_weight_.size(); ++b) initial_weight_[b] = bonds.weight(static_cast<Offset>(b));
@@ -232,15 +245,11 @@ class FailureStressReadout {
                                               : point[i];
       }
     }
-    last_ = at_surface ? Last::surface : Last::point;
     return at_surface ? surface_stress_ : point;
   }
 
-  void begin_averaging(const Settings& s, bool at_surface) {
-    self_weight_ = s.self_weight;
-    at_surface_ = at_surface;
-    last_ = at_surface ? Last::smoothed : Last::averaged;
-  }
+  // Which particles' first averaging pass read_screened() computed.
+  const std::vector<std::uint8_t>& first_pass_needed() const { return at_surface_ ? first_pass_needed_ : needed_; }
 
   // out[i]: the highest of in[] over particle i and its bonded neighbours, cut or not; with
   // `only`, just where it is set (elsewhere in[i]).
@@ -303,14 +312,15 @@ class FailureStressReadout {
   std::vector<std::uint8_t> on_surface_, read_outside_;
   MatArray<Dim, double> surface_stress_, averaged_, smoothed_;
   std::vector<std::uint8_t> cut_out_;  // empty until the first CrackSide::slab failure
-  // The settings of the last averaged read (complete() averages with them again).
+  // The settings of the last read (complete() averages with them again).
   double self_weight_ = 0;
   bool at_surface_ = false;
-  // read_screened(): the bounds, which particles' reads (and first passes) it computed, and
-  // whether it left some out.
+  // read_screened(): the bounds, which particles' reads (and, with the second pass, first
+  // passes) it computed, whether it left some out, and the bonds cut when it read.
   std::vector<double> sample_bound_, reach_bound_;
   std::vector<std::uint8_t> needed_, first_pass_needed_;
   bool pending_ = false;
+  std::size_t cuts_at_read_ = 0;
 };
 
 }  // namespace MPSFSI_ABI
