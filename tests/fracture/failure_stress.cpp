@@ -174,7 +174,8 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
     screened.read_screened(point, x, x, bonds, nullptr, unloaded, settings, bound, may_fail);
     REQUIRE(screened.screened_out() > 0);
     Offset intact = bonds.begin(1);
-    while (!bonds.intact(intact)) ++intact;
+    while (intact < bonds.end(1) && !bonds.intact(intact)) ++intact;
+    REQUIRE(intact < bonds.end(1));
     bonds.cut(intact);
     CHECK_THROWS_AS(screened.complete(point, bonds), InvalidInput);
   }

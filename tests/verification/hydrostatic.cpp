@@ -118,10 +118,10 @@ void run_hydrostatic(double width, double depth, double l0, double settle, doubl
 // rho g (level - y) with `level` the open water's surface. Over [settle, window]: the mean lid
 // load relative to that, and the steps with a lid particle at the free surface; over the whole
 // run (to `end`): the first time a lid particle is at the free surface, where along the lid
-// (the smallest x of those at the free surface then; the lid's closed end is at the tank wall,
-// x = 0), and the fastest fluid.
+// (the smallest and largest x of those at the free surface then; the lid's closed end is at the
+// tank wall, x = 0), and the fastest fluid.
 struct LidResult {
-  double load_ratio = 0, first_parted = -1, first_parted_x = -1, fastest = 0;
+  double load_ratio = 0, first_parted = -1, first_parted_from = -1, first_parted_to = -1, fastest = 0;
   int steps_parted = 0, steps = 0;
 };
 
@@ -153,20 +153,23 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
     const auto& ps = solver.particles();
     double load = 0;
     bool parted = false;
-    double parted_x = -1;
+    double parted_from = -1, parted_to = -1;
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.kinds()[i] == ParticleKind::fluid) r.fastest = std::max(r.fastest, ps.velocities()[i].norm());
       if (i < first || ps.kinds()[i] != ParticleKind::wall || std::abs(ps.positions()[i][1] - (yb + 0.5 * l0)) > 1e-9)
         continue;
       load += solver.pressure()[i] * l0;
       if (solver.free_surface()[i] != 0) {
-        parted_x = parted ? std::min(parted_x, ps.positions()[i][0]) : ps.positions()[i][0];
+        const double at = ps.positions()[i][0];
+        parted_from = parted ? std::min(parted_from, at) : at;
+        parted_to = parted ? std::max(parted_to, at) : at;
         parted = true;
       }
     }
     if (parted && r.first_parted < 0) {
       r.first_parted = solver.time();
-      r.first_parted_x = parted_x;
+      r.first_parted_from = parted_from;
+      r.first_parted_to = parted_to;
     }
     if (solver.time() < settle - 1e-9 || solver.time() > window + 1e-9) continue;
     load_sum += load;
@@ -214,8 +217,9 @@ TEST_CASE("verification.fluid: water under a lid with Neumann walls: the water s
   const auto r = water_under_lid(1.5, 0.01, 0.05, 0.3, 0.6, 2e-3, WallCondition::neumann);
   MESSAGE("Neumann walls: water under a 1.5 m lid, l0 = 10 mm: mean lid load over 0.05-0.3 s / hydrostatic = "
           << r.load_ratio << ", steps with a lid particle at the free surface: " << r.steps_parted << " of " << r.steps
-          << "; over 0-0.6 s: first parting at t = " << r.first_parted << " s, x = " << r.first_parted_x
-          << " m from the closed end, fastest fluid " << r.fastest << " m/s");
+          << "; over 0-0.6 s: first parting at t = " << r.first_parted << " s, lid particles at the free surface "
+          << "from x = " << r.first_parted_from << " to " << r.first_parted_to
+          << " m (closed end at 0), fastest fluid " << r.fastest << " m/s");
   CHECK(r.steps_parted == 0);
 }
 

@@ -155,7 +155,7 @@ class FailureStressReadout {
 
   // Fills the tensors read_screened() left out, from the same `point` and `bonds` it was given.
   // Throws InvalidInput if a bond has been cut since: the read would then mix two states (a
-  // caller that cuts bonds completes the read first).
+  // caller that cuts bonds completes the read first). The read stays pending until the next.
   void complete(const MatArray<Dim, double>& point, const BondList<Dim, double>& bonds) {
     if (!pending_) return;
     if (bonds.num_cut() != cuts_at_read_)
