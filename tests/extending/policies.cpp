@@ -99,6 +99,12 @@ struct RobustFluid : mpsfsi::FluidDefaults<2> {
 };
 // [end snippet]
 
+// [snippet: under_ice]
+struct UnderIceFluid : mpsfsi::FluidDefaults<2> {
+  using free_surface = mpsfsi::CentroidDeviationSurface<>;
+};
+// [end snippet]
+
 // [snippet: failure]
 // Ice whose cracks can only open across x (say, a sheet with vertical columnar grains): the
 // normal stress along x against sigma_f, the crack plane always normal to x.
@@ -398,6 +404,26 @@ TEST_CASE_TEMPLATE("extending: a user's coupling scheme reaches the fixed point 
   CHECK(apart <= 10 * tolerance * largest);
   CHECK(load_apart <= 10 * tolerance);
   CHECK(user_solves > library_solves);  // Aitken's dynamic factor: fewer solves than a fixed 0.5
+}
+
+TEST_CASE("extending: the centroid-deviation detector flags a subset of the default's free surface") {
+  using namespace mpsfsi;
+  auto p = small_dam_break_parameters();
+  p.wall_condition = WallCondition::neumann;
+  const auto set = small_dam_break();
+  FluidSolver<2> plain(set, p);
+  FluidSolver<2, UnderIceFluid> under_ice(set, p);
+  plain.step();  // the same positions when the surface is detected
+  under_ice.step();
+  std::size_t plain_flags = 0, under_ice_flags = 0;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    CHECK(under_ice.free_surface()[i] <= plain.free_surface()[i]);
+    plain_flags += plain.free_surface()[i];
+    under_ice_flags += under_ice.free_surface()[i];
+  }
+  CHECK(under_ice_flags > 0);  // the column's top and open side are still free surface
+  MESSAGE("small dam break, first step: " << plain_flags << " flagged by the density test, " << under_ice_flags
+                                          << " by the centroid deviation");
 }
 
 TEST_CASE("extending: a user's linear solver gives the default's answer where SSOR-CG converges") {

@@ -33,24 +33,41 @@ TEST_CASE_TEMPLATE("fluid.ppe: the assembled matrix is symmetric, sorted, diagon
   const auto c = ideal_lattice_constants<Dim, KoshizukaWeight>(l0, re);
   std::vector<double> n;
   number_density<KoshizukaWeight>(set.positions(), all, re, n);
-  std::vector<std::uint8_t> surface, surface_count;
+  std::vector<std::uint8_t> surface, surface_count, surface_centroid;
   NumberDensitySurface::detect(set.positions(), set.kinds(), all, n, c.n0, 0.97, l0, re, surface);
   NeighborCountSurface::detect(set.positions(), set.kinds(), all, n, c.n0, 0.97, l0, re, surface_count);
-  std::size_t flagged = 0, flagged_count = 0, top_row = 0;
+  CentroidDeviationSurface<KoshizukaWeight>::detect(set.positions(), set.kinds(), all, n, c.n0, 0.97, l0, re,
+                                                    surface_centroid);
+  std::size_t flagged = 0, flagged_count = 0, flagged_centroid = 0, top_row = 0, deep = 0, deep_flagged = 0;
   for (std::size_t i = 0; i < set.size(); ++i) {
     flagged += surface[i];
     flagged_count += surface_count[i];
+    flagged_centroid += surface_centroid[i];
+    CHECK(surface_count[i] <= surface[i]);  // both two-stage tests only remove flags
+    CHECK(surface_centroid[i] <= surface[i]);
     const bool top = set.kinds()[i] == ParticleKind::fluid && set.positions()[i][Dim - 1] > side - l0 + 0.1 * l0 - 0.2;
     if (top) {
       ++top_row;
-      CHECK(surface[i] == 1);  // the top layer is free surface for both
+      CHECK(surface[i] == 1);  // the top layer is free surface for all three
       CHECK(surface_count[i] == 1);
+      CHECK(surface_centroid[i] == 1);
     }
-    if (set.kinds()[i] == ParticleKind::dummy) CHECK(surface[i] == 0);
+    // More than re below the top, the neighbourhood is complete (fluid, wall or dummy at every
+    // lattice site): the jitter lowers n below 0.97 n0 for some, but the neighbours' centroid stays
+    // within 0.2 l0 (jitter 0.1 l0), so the centroid test flags none of them.
+    if (set.kinds()[i] != ParticleKind::dummy && set.positions()[i][Dim - 1] < side - l0 - re) {
+      ++deep;
+      deep_flagged += surface[i];
+      CHECK(surface_centroid[i] == 0);
+    }
+    if (set.kinds()[i] == ParticleKind::dummy) {
+      CHECK(surface[i] == 0);
+      CHECK(surface_centroid[i] == 0);
+    }
   }
-  CHECK(flagged_count <= flagged);  // the count test only removes flags
-  MESSAGE(Dim << "D: n < 0.97 n0 flags " << flagged << ", with the neighbour count " << flagged_count << ", top layer "
-              << top_row);
+  MESSAGE(Dim << "D: n < 0.97 n0 flags " << flagged << " (" << deep_flagged << " of " << deep
+              << " more than re below the top), with the neighbour count " << flagged_count
+              << ", with the centroid deviation " << flagged_centroid << ", top layer " << top_row);
 
   std::vector<double> source(set.size(), 1.0);
   PpeAssembler<KoshizukaWeight, Dim, double> ppe;

@@ -125,6 +125,7 @@ struct LidResult {
   int steps_parted = 0, steps = 0;
 };
 
+template <class Policies = FluidDefaults<2>>
 LidResult water_under_lid(double lid_length, double l0, double settle, double window, double end, double dt,
                           WallCondition walls) {
   scenes::FloatingIceBeam scene;
@@ -143,7 +144,7 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
   p.l0 = l0;
   p.dt = dt;
   p.wall_condition = walls;
-  FluidSolver<2> solver(std::move(set), p);
+  FluidSolver<2, Policies> solver(std::move(set), p);
   const double rho_g = p.density * p.gravity.norm();
   const double hydrostatic = rho_g * (scene.open_water_level(l0) - (yb + 0.5 * l0)) * L;  // per unit width
   LidResult r;
@@ -179,6 +180,10 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
   r.load_ratio = load_sum / r.steps / hydrostatic;
   return r;
 }
+
+struct CentroidSurfacePolicies : FluidDefaults<2> {
+  using free_surface = CentroidDeviationSurface<>;
+};
 
 }  // namespace
 
@@ -221,6 +226,26 @@ TEST_CASE("verification.fluid: water under a lid with Neumann walls: the water s
           << "from x = " << r.first_parted_from << " to " << r.first_parted_to
           << " m (closed end at 0), fastest fluid " << r.fastest << " m/s");
   CHECK(r.steps_parted == 0);
+}
+
+// A known limitation of CentroidDeviationSurface (docs/validation/fluid.md): the same case and
+// tolerances; the pressure profile passes (worst layer 0.67 %), but the column grows to 1.025 H
+// over the 1.5 s (n0/<n> = 1.020), outside the 1 % volume check. The density test's spurious flags
+// inside the water are what held the volume. Marked should_fail: it fails the volume check while
+// the limitation stands, and fails the suite once the column holds, to be turned into a plain test.
+TEST_CASE("verification.fluid: hydrostatic tank 2D with Neumann walls and the centroid-deviation surface test" *
+          doctest::should_fail()) {
+  run_hydrostatic<2, CentroidSurfacePolicies>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann);
+}
+
+TEST_CASE("verification.fluid: water under a lid with Neumann walls and the centroid-deviation surface test") {
+  const auto r = water_under_lid<CentroidSurfacePolicies>(1.5, 0.01, 0.05, 0.3, 0.6, 2e-3, WallCondition::neumann);
+  MESSAGE("Neumann walls, centroid-deviation surface test: water under a 1.5 m lid, l0 = 10 mm: mean lid load over "
+          << "0.05-0.3 s / hydrostatic = " << r.load_ratio << ", steps with a lid particle at the free surface: "
+          << r.steps_parted << " of " << r.steps << "; over 0-0.6 s: first parting at t = " << r.first_parted
+          << " s, fastest fluid " << r.fastest << " m/s");
+  CHECK(r.steps_parted == 0);
+  CHECK(r.first_parted < 0);
 }
 
 TEST_CASE("verification.fluid: hydrostatic tank 3D") {
