@@ -76,9 +76,9 @@ struct NeighborCountSurface {
 // its neighbours' centroid near itself even when disorder lowers its n, so it keeps its pressure;
 // at a free surface the missing half of the neighbourhood moves the centroid about 0.5-0.9 l0
 // away. Weight is the weight function the deviation is taken with (the solver's, for consistency).
-// Measured (docs/validation/fluid.md, fsi.md): with WallCondition::neumann, water under a lid no
-// longer parts from it; but in the open hydrostatic tank the column grows 2.5 % in 1.5 s, since the
-// density test's spurious interior flags were what held its volume. So it is not the default.
+// One of the three settings for water under a structure (docs/theory.md, section 2.9): with
+// WallCondition::neumann and the full density term, water under a fixed lid stays on it
+// (docs/validation/fluid.md). Not the default: the defaults' figures are validated as they are.
 template <class Weight = KoshizukaWeight>
 struct CentroidDeviationSurface {
   static constexpr double deviation_ratio = 0.2;
