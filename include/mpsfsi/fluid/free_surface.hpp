@@ -74,8 +74,8 @@ struct NeighborCountSurface {
 // with every neighbour counted, walls and dummies included. A particle whose neighbourhood is
 // closed on all sides (water under a structure, in a corner between a structure and a wall) has
 // its neighbours' centroid near itself even when disorder lowers its n, so it keeps its pressure;
-// at a free surface the missing half of the neighbourhood moves the centroid about 0.5-0.9 l0
-// away. Weight is the weight function the deviation is taken with (the solver's, for consistency).
+// at a free surface the missing half of the neighbourhood moves the centroid inwards, by 0.49 l0
+// for the top row of a 2D lattice (re = 2.1 l0) and more at corners. Weight is the weight function the deviation is taken with (the solver's, for consistency).
 // One of the three settings for water under a structure (docs/theory.md, section 2.9): with
 // WallCondition::neumann and the full density term, water under a fixed lid stays on it
 // (docs/validation/fluid.md). Not the default: the defaults' figures are validated as they are.
