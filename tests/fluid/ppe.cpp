@@ -52,9 +52,9 @@ TEST_CASE_TEMPLATE("fluid.ppe: the assembled matrix is symmetric, sorted, diagon
       CHECK(surface_count[i] == 1);
       CHECK(surface_centroid[i] == 1);
     }
-    // More than re below the top, the neighbourhood is complete (fluid, wall or dummy at every
-    // lattice site): the jitter lowers n below 0.97 n0 for some, but the neighbours' centroid stays
-    // within 0.2 l0 (jitter 0.1 l0), so the centroid test flags none of them.
+    // More than re below the top, fluid, wall or dummy particles surround a particle on every side:
+    // the jitter (up to 0.1 l0 per coordinate) lowers n below 0.97 n0 for some, but the neighbours'
+    // centroid stays within 0.2 l0 of them here, so the centroid test flags none.
     if (set.kinds()[i] != ParticleKind::dummy && set.positions()[i][Dim - 1] < side - l0 - re) {
       ++deep;
       deep_flagged += surface[i];

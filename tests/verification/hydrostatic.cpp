@@ -191,11 +191,12 @@ struct CentroidSurfacePolicies : FluidDefaults<2> {
 
 TEST_SUITE("verification.fluid") {
 
-// A known limitation (docs/validation/fsi.md, open problems: water under a long structure): the
-// water parts from the lid within about 0.1 s. What floating ice needs: the lid's mean load
-// within the open tank's 3 % of hydrostatic (above; the reference is taken at the wall row's own
-// height) and no lid particle at the free surface. Marked should_fail: it passes the suite while
-// the limitation stands, and fails it once the water holds, to be turned into a plain test.
+// A known limitation of the default settings (docs/validation/fsi.md, open problems: water under
+// a long structure): the water parts from the lid within about 0.1 s. What floating ice needs: the
+// lid's mean load within the open tank's 3 % of hydrostatic (above; the reference is taken at the
+// wall row's own height) and no lid particle at the free surface. Marked should_fail: it passes
+// the suite while the limitation stands, and fails it once the defaults hold the water, to be
+// turned into a plain test. The settings for water under a structure hold it (below).
 TEST_CASE("verification.fluid: water under a lid stays hydrostatic (known limitation)" * doctest::should_fail()) {
   const auto r = water_under_lid(1.5, 0.01, 0.05, 0.3, 0.3, 2e-3, WallCondition::wall_rows);
   MESSAGE("water under a 1.5 m lid, l0 = 10 mm: mean lid load over 0.05-0.3 s / hydrostatic = " << r.load_ratio

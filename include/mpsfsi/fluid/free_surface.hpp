@@ -21,6 +21,21 @@ inline namespace MPSFSI_ABI {
 // filling surface[i] = 1 for fluid or wall particles that get the Dirichlet condition P = 0.
 // Dummy particles are never in the PPE, so they are never flagged.
 
+namespace detail {
+// The two-stage tests: a fluid or wall particle with n_i < beta n0 is at the surface when
+// second_test(i) also holds; the second test runs only for those that fail the first.
+template <class Scalar, class SecondTest>
+void two_stage_surface(const std::vector<ParticleKind>& kinds, const std::vector<Scalar>& n, Scalar n0, Scalar beta,
+                       std::vector<std::uint8_t>& surface, const SecondTest& second_test) {
+  surface.resize(n.size());
+  MPSFSI_OMP(parallel for schedule(static))
+  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n.size()); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    surface[i] = kinds[i] != ParticleKind::dummy && n[i] < beta * n0 && second_test(i) ? 1 : 0;
+  }
+}
+}  // namespace detail
+
 // The classic test of Koshizuka & Oka: n_i < beta n0.
 struct NumberDensitySurface {
   template <int Dim, class Scalar>
@@ -49,21 +64,14 @@ struct NeighborCountSurface {
                      const BasicNeighborList<Scalar>& list, const std::vector<Scalar>& n, Scalar n0, Scalar beta,
                      Scalar l0, Scalar re, std::vector<std::uint8_t>& surface) {
     const double full = static_cast<double>(ideal_neighbor_count<Dim>(l0, re));
-    surface.resize(n.size());
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n.size()); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      if (kinds[i] == ParticleKind::dummy || !(n[i] < beta * n0)) {
-        surface[i] = 0;
-        continue;
-      }
+    detail::two_stage_surface(kinds, n, n0, beta, surface, [&](std::size_t i) {
       int count = 0;
       for (Offset k = list.begin(i); k < list.end(i); ++k) {
         const Vec<Dim, Scalar> r = x[static_cast<std::size_t>(list.indices[k])] - x[i];
         count += detail::pair_distance(list, k, r) < re ? 1 : 0;
       }
-      surface[i] = count < count_ratio * full ? 1 : 0;
-    }
+      return count < count_ratio * full;
+    });
   }
 };
 
@@ -75,7 +83,9 @@ struct NeighborCountSurface {
 // closed on all sides (water under a structure, in a corner between a structure and a wall) has
 // its neighbours' centroid near itself even when disorder lowers its n, so it keeps its pressure;
 // at a free surface the missing half of the neighbourhood moves the centroid inwards, by 0.49 l0
-// for the top row of a 2D lattice (re = 2.1 l0) and more at corners. Weight is the weight function the deviation is taken with (the solver's, for consistency).
+// for the top row of a 2D lattice (re = 2.1 l0) and more at corners. 0.2 l0 is the threshold of
+// Tsukamoto et al. Weight is the weight function the deviation is taken with (the solver's, for
+// consistency).
 // One of the three settings for water under a structure (docs/theory.md, section 2.9): with
 // WallCondition::neumann and the full density term, water under a fixed lid stays on it
 // (docs/validation/fluid.md). Not the default: the defaults' figures are validated as they are.
@@ -87,15 +97,8 @@ struct CentroidDeviationSurface {
   static void detect(const VecArray<Dim, Scalar>& x, const std::vector<ParticleKind>& kinds,
                      const BasicNeighborList<Scalar>& list, const std::vector<Scalar>& n, Scalar n0, Scalar beta,
                      Scalar l0, Scalar re, std::vector<std::uint8_t>& surface) {
-    surface.resize(n.size());
     const Scalar limit = static_cast<Scalar>(deviation_ratio) * l0;
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n.size()); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      if (kinds[i] == ParticleKind::dummy || !(n[i] < beta * n0)) {
-        surface[i] = 0;
-        continue;
-      }
+    detail::two_stage_surface(kinds, n, n0, beta, surface, [&](std::size_t i) {
       Vec<Dim, Scalar> weighted = Vec<Dim, Scalar>::Zero();
       Scalar weight_sum = 0;
       for (Offset k = list.begin(i); k < list.end(i); ++k) {
@@ -105,8 +108,8 @@ struct CentroidDeviationSurface {
         weight_sum += w;
       }
       // No neighbour within re: an isolated particle, at the surface.
-      surface[i] = !(weight_sum > 0) || weighted.norm() > limit * weight_sum ? 1 : 0;
-    }
+      return !(weight_sum > 0) || weighted.norm() > limit * weight_sum;
+    });
   }
 };
 
