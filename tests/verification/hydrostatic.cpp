@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "mpsfsi/fluid/fluid_solver.hpp"
@@ -120,10 +121,14 @@ void run_hydrostatic(double width, double depth, double l0, double settle, doubl
 // load relative to that, and the steps with a lid particle at the free surface; over the whole
 // run (to `end`): the first time a lid particle is at the free surface, where along the lid
 // (the smallest and largest x of those at the free surface then; the lid's closed end is at the
-// tank wall, x = 0), and the fastest fluid.
+// tank wall, x = 0), and the fastest fluid. A run the solver stops (a blow-up, a step above the
+// stability limit) ends there: `stopped` is the time of the last completed step and `stop` the
+// solver's message.
 struct LidResult {
   double load_ratio = 0, first_parted = -1, first_parted_from = -1, first_parted_to = -1, fastest = 0;
   int steps_parted = 0, steps = 0;
+  double stopped = -1;
+  std::string stop;
 };
 
 template <class Policies = FluidDefaults<2>>
@@ -152,7 +157,13 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
   LidResult r;
   double load_sum = 0;
   while (solver.time() < end - 1e-9) {
-    solver.step();
+    try {
+      solver.step();
+    } catch (const SimulationError& e) {
+      r.stopped = solver.time();
+      r.stop = e.what();
+      break;
+    }
     const auto& ps = solver.particles();
     double load = 0;
     bool parted = false;
@@ -179,13 +190,33 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
     r.steps_parted += parted ? 1 : 0;
     ++r.steps;
   }
-  r.load_ratio = load_sum / r.steps / hydrostatic;
+  r.load_ratio = r.steps > 0 ? load_sum / r.steps / hydrostatic : 0.0;
   return r;
 }
 
 struct CentroidSurfacePolicies : FluidDefaults<2> {
   using free_surface = CentroidDeviationSurface<>;
 };
+
+// Water under a lid of `lid_length` with the settings for water under a structure, l0 = 10 mm,
+// 2 ms step, to 2 s: the checks of the 1.5 m case below.
+void check_water_under_lid_under_structure(double lid_length) {
+  const double l0 = 0.01;
+  const auto r =
+      water_under_lid<CentroidSurfacePolicies>(lid_length, l0, 0.3, 2.0, 2.0, 2e-3, WallCondition::neumann, false);
+  scenes::FloatingIceBeam scene;
+  scene.thickness = 8 * l0;
+  const double head = scene.open_water_level(l0) - (scene.beam_bottom(l0) + 0.5 * l0);
+  const double offset_reference = (head - 0.5 * l0) / head;  // relative to the plain hydrostatic load
+  MESSAGE("settings for water under a structure: water under a " << lid_length << " m lid, l0 = 10 mm: mean lid load "
+          << "over 0.3-2.0 s / hydrostatic = " << r.load_ratio << " (with P = 0 on the surface particles: "
+          << offset_reference << "), steps with a lid particle at the free surface: " << r.steps_parted << " of "
+          << r.steps << "; first parting at t = " << r.first_parted << " s, fastest fluid " << r.fastest << " m/s"
+          << (r.stopped >= 0 ? "; stopped after t = " + std::to_string(r.stopped) + " s: " + r.stop : std::string()));
+  CHECK(r.stopped < 0);
+  CHECK(r.first_parted < 0);
+  CHECK(test::within_relative(r.load_ratio, offset_reference, 0.03));
+}
 
 }  // namespace
 
@@ -243,23 +274,27 @@ TEST_CASE("verification.fluid: hydrostatic tank 2D with the settings for water u
 // rho g (level - l0/2 - y) at the lid's wall row (0.923 of the plain hydrostatic load here); the
 // tolerance is the open tank's 3 % (above). No lid particle may be at the free surface at any step.
 TEST_CASE("verification.fluid: water under a lid with the settings for water under a structure") {
-  const double l0 = 0.01;
-  const auto r = water_under_lid<CentroidSurfacePolicies>(1.5, l0, 0.3, 2.0, 2.0, 2e-3, WallCondition::neumann, false);
-  scenes::FloatingIceBeam scene;
-  scene.thickness = 8 * l0;
-  const double head = scene.open_water_level(l0) - (scene.beam_bottom(l0) + 0.5 * l0);
-  const double offset_reference = (head - 0.5 * l0) / head;  // relative to the plain hydrostatic load
-  MESSAGE("settings for water under a structure: water under a 1.5 m lid, l0 = 10 mm: mean lid load over 0.3-2.0 s / "
-          << "hydrostatic = " << r.load_ratio << " (with P = 0 on the surface particles: " << offset_reference
-          << "), steps with a lid particle at the free surface: " << r.steps_parted << " of " << r.steps
-          << "; over 0-2 s: first parting at t = " << r.first_parted << " s, fastest fluid " << r.fastest << " m/s");
-  CHECK(r.first_parted < 0);
-  CHECK(test::within_relative(r.load_ratio, offset_reference, 0.03));
+  check_water_under_lid_under_structure(1.5);
 }
 
 TEST_CASE("verification.fluid: hydrostatic tank 3D") {
   // Same tolerances; 30 layers deep so that the surface offset l0 / (2 H) is 1.7 % (measured 2.0 %).
   run_hydrostatic<3>(0.08, 0.24, 0.008, 1.0, 0.5, 1e-3);
+}
+
+}  // TEST_SUITE
+
+TEST_SUITE("validation.fluid") {
+
+// A known limitation (docs/validation/fluid.md, "Water under a structure"): with the same
+// settings the water under a lid twice as long does not hold. The load oscillates about
+// hydrostatic with a growing amplitude, water comes over the lid's far end, and the solver stops
+// before 2 s. The floating beam of scenes::FloatingIceBeam needs 5 / lambda of lid, 3 m at
+// h = 40 mm. Marked should_fail: it passes while the limitation stands and fails once the water
+// holds, to be turned into a plain test.
+TEST_CASE("validation.fluid: water under a 3 m lid with the settings for water under a structure (known limitation)" *
+          doctest::should_fail()) {
+  check_water_under_lid_under_structure(3.0);
 }
 
 }  // TEST_SUITE

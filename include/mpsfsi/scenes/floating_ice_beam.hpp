@@ -33,6 +33,12 @@ namespace scenes {
 // water line, which the foundation model leaves out); water under the beam up to y_b and, beyond
 // the far end, open water up to the beam's draft (to the nearest row). The tank is water_length
 // long, so the open water is water_length - beam_length.
+//
+// The tank wall does not hold the beam: FsiCoupler has no contact between a structure and the
+// tank's fixed walls. The open water pushes on the far end face with rho_w g d^2 / 2 per unit
+// width (d the wetted depth of the face) and nothing pushes back on the loaded end, so a free beam
+// drifts into the wall. Support the loaded end's column horizontally, a roller on the wall:
+// ElasticSolver::support(i, e_x) for each i in end_column.
 struct FloatingIceBeam {
   double thickness = 0.04;          // h, m
   double beam_length = 0;           // m; 0: 5 / lambda rounded up to whole spacings
