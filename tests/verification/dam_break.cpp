@@ -159,3 +159,18 @@ TEST_CASE("verification.fluid: dam break 3D at coarse resolution runs to complet
 }
 
 }  // TEST_SUITE
+
+TEST_SUITE("validation.fluid") {
+
+struct OwnValueGradientPolicies : FluidDefaults<2> {
+  using free_surface = CentroidDeviationSurface<>;
+  static constexpr GradientReference pressure_gradient_reference = GradientReference::own_value;
+};
+
+TEST_CASE("validation.fluid: dam break 2D with the settings and the own-value gradient") {
+  // The same case and tolerances with the settings for water under a structure and the pressure
+  // gradient taken about each particle's own pressure (hydrostatic.cpp, water under a long lid).
+  dam_break_2d<OwnValueGradientPolicies>(WallCondition::neumann, false);
+}
+
+}  // TEST_SUITE

@@ -194,22 +194,29 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
   return r;
 }
 
+// The policies of the settings for water under a structure (docs/theory.md, section 2.9), and the
+// same with the pressure gradient taken about each particle's own pressure.
 struct CentroidSurfacePolicies : FluidDefaults<2> {
   using free_surface = CentroidDeviationSurface<>;
+};
+struct OwnValueGradientPolicies : CentroidSurfacePolicies {
+  static constexpr GradientReference pressure_gradient_reference = GradientReference::own_value;
 };
 
 // Water under a lid of `lid_length` with the settings for water under a structure, to 2 s: the
 // checks of the 1.5 m case below. The step is 2 ms at l0 = 10 mm and scales with l0 (the same
 // Courant number for the same flow).
+template <class Policies = CentroidSurfacePolicies>
 void check_water_under_lid_under_structure(double lid_length, double l0 = 0.01) {
   const double dt = 2e-3 * l0 / 0.01;
-  const auto r =
-      water_under_lid<CentroidSurfacePolicies>(lid_length, l0, 0.3, 2.0, 2.0, dt, WallCondition::neumann, false);
+  const auto r = water_under_lid<Policies>(lid_length, l0, 0.3, 2.0, 2.0, dt, WallCondition::neumann, false);
   scenes::FloatingIceBeam scene;
   scene.thickness = 8 * l0;
   const double head = scene.open_water_level(l0) - (scene.beam_bottom(l0) + 0.5 * l0);
   const double offset_reference = (head - 0.5 * l0) / head;  // relative to the plain hydrostatic load
-  MESSAGE("settings for water under a structure: water under a " << lid_length << " m lid, l0 = " << 1e3 * l0
+  const bool own_value = Policies::pressure_gradient_reference == GradientReference::own_value;
+  MESSAGE("settings for water under a structure" << std::string(own_value ? " with the own-value gradient" : "")
+          << ": water under a " << lid_length << " m lid, l0 = " << 1e3 * l0
           << " mm: mean lid load "
           << "over 0.3-2.0 s / hydrostatic = " << r.load_ratio << " (with P = 0 on the surface particles: "
           << offset_reference << "), steps with a lid particle at the free surface: " << r.steps_parted << " of "
@@ -302,6 +309,32 @@ TEST_CASE("validation.fluid: water under a 3 m lid with the settings for water u
 TEST_CASE("validation.fluid: water under a 1.5 m lid at l0 = 5 mm with the settings for water under a structure "
           "(known limitation)" * doctest::should_fail()) {
   check_water_under_lid_under_structure(1.5, 0.005);
+}
+
+// The same two lids, and the floating beam's 5.06 m at h = 80 mm, with the pressure gradient
+// taken about each particle's own pressure (GradientReference::own_value) in place of the
+// neighbours' minimum: the same checks as the 1.5 m lid in the default suite. At l0 = 5 mm the
+// water holds (no lid particle at P = 0) but the load is 5 % above the reference: marked
+// should_fail while that stands.
+TEST_CASE("validation.fluid: water under a 3 m lid with the settings and the own-value gradient") {
+  check_water_under_lid_under_structure<OwnValueGradientPolicies>(3.0);
+}
+
+TEST_CASE("validation.fluid: water under a 5.06 m lid with the settings and the own-value gradient") {
+  check_water_under_lid_under_structure<OwnValueGradientPolicies>(5.06);
+}
+
+TEST_CASE("validation.fluid: water under a 1.5 m lid at l0 = 5 mm with the settings and the own-value gradient "
+          "(known limitation)" * doctest::should_fail()) {
+  check_water_under_lid_under_structure<OwnValueGradientPolicies>(1.5, 0.005);
+}
+
+// What the own-value gradient costs in the open tank (docs/validation/fluid.md): the pressure
+// profile holds, the column height does not (same case and tolerances as above). Marked
+// should_fail while it stands.
+TEST_CASE("validation.fluid: hydrostatic tank 2D with the settings and the own-value gradient (known limitation)" *
+          doctest::should_fail()) {
+  run_hydrostatic<2, OwnValueGradientPolicies>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann, false);
 }
 
 }  // TEST_SUITE
