@@ -9,6 +9,7 @@
 #include "mpsfsi/kernels/lattice_constants.hpp"
 #include "mpsfsi/kernels/weight.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
+#include "mpsfsi/solid/bond_viscosity.hpp"
 #include "mpsfsi/solid/corrected_total_lagrangian.hpp"
 #include "mpsfsi/solid/hwang_model.hpp"
 
@@ -39,9 +40,17 @@ const LameConstants<double> kLame{1.5e6, 1.0e6};
 // The force loop against a plain sum over directed bonds, t_ij = V P_i g_ij + 2c beta_ij delta_ij
 // added to i and subtracted from j, with the model's own fit, on 1, 2 and 3 threads; the loop
 // that also gives the stresses gives the same forces, the stresses of the fit's F to round-off,
-// and those of stresses() to the bit.
+// and those of stresses() to the bit; the loop with the bond viscosity gives the forces plus
+// BondViscosity's to round-off, at random velocities, with and without the stresses.
 template <int Dim>
 void check_force_loop_against_bond_sum(ModelBlock<Dim, CorrectedTotalLagrangian<Dim>>& block, const VecArray<Dim>& x) {
+  VecArray<Dim> velocity(x.size());
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> speed(-0.1, 0.1);
+  for (auto& p : velocity)
+    for (int a = 0; a < Dim; ++a) p[a] = speed(rng);
+  BondViscosity<Dim> viscosity;
+  viscosity.initialize(block.bonds);
   const auto& fit = block.model.fit();
   const double c2 = 2 * block.model.stabilization * kLame.mu * block.context.volume * Dim / block.context.n0;
   VecArray<Dim> reference(x.size(), Vec<Dim>::Zero());
@@ -66,6 +75,13 @@ void check_force_loop_against_bond_sum(ModelBlock<Dim, CorrectedTotalLagrangian<
   double stress_scale = 0;
   for (const auto& s : expected_stress) stress_scale = std::max(stress_scale, s.norm());
   CHECK(stress_scale > 0);
+  // A viscosity coefficient that makes the viscous forces as large as the elastic ones.
+  VecArray<Dim> unit_viscous(x.size(), Vec<Dim>::Zero());
+  viscosity.add(block.bonds, x, velocity, 1.0, unit_viscous);
+  double unit_scale = 0;
+  for (const auto& f : unit_viscous) unit_scale = std::max(unit_scale, f.norm());
+  REQUIRE(unit_scale > 0);
+  const double zeta = scale / unit_scale;
   const int saved = parallel::max_threads();
   for (int threads = 1; threads <= 3; ++threads) {
     CAPTURE(threads);
@@ -92,6 +108,22 @@ void check_force_loop_against_bond_sum(ModelBlock<Dim, CorrectedTotalLagrangian<
       worst_stress = std::max(worst_stress, (stress[i] - expected_stress[i]).norm());
     }
     CHECK(worst_stress < 1e-12 * stress_scale);
+    VecArray<Dim> with_viscosity = f;
+    viscosity.add(block.bonds, x, velocity, zeta, with_viscosity);
+    double viscous_scale = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) viscous_scale = std::max(viscous_scale, (with_viscosity[i] - f[i]).norm());
+    CHECK(viscous_scale > 0.5 * scale);
+    VecArray<Dim> fused, fused_with_stress;
+    MatArray<Dim> fused_stress;
+    block.model.internal_forces(x, velocity, block.bonds, fused, nullptr, zeta);
+    block.model.internal_forces(x, velocity, block.bonds, fused_with_stress, &fused_stress, zeta);
+    double worst_fused = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      worst_fused = std::max(worst_fused, (fused[i] - with_viscosity[i]).norm());
+      CHECK(fused_with_stress[i] == fused[i]);
+      CHECK(fused_stress[i] == stress[i]);
+    }
+    CHECK(worst_fused < 1e-12 * scale);
   }
   parallel::set_num_threads(saved);
 }

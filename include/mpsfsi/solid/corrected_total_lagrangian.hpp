@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
@@ -82,29 +83,45 @@ class CorrectedTotalLagrangian {
   // The loop runs over groups of `lanes` consecutive particles, one particle per SIMD lane
   // (detail::PackedBonds), as Eigen arrays of that length: each lane fits its particle's A_i, and
   // the stress of all of them is evaluated at once (with about 12 bonds per particle in 2D, the
-  // per-particle work weighs as much as the bond loops). Each lane adds its own t_ij to its
-  // particle and subtracts it from particle j's force: thread 0 into `force`, the others into
-  // their own copies (partial_), which are added at the end, so no two threads write the same
-  // entry. Thread t takes the t-th contiguous block of groups, so its copy is written only within
-  // the bond graph's bandwidth of that block: only that stretch is zeroed and added (the whole
-  // array when the particles are not ordered in space). Each thread keeps the group's du_ij in its
-  // own rows of scratch_. Nothing is allocated after the first call.
-  void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds, VecArray<Dim, Scalar>& force) {
-    forces_and_stresses(x, bonds, force, nullptr);
+  // per-particle work weighs as much as the bond loops). The coefficients are not stored:
+  // with g_ij = beta_ij M_i^+ phi_ij (DeformationFit, M_i^+ symmetric),
+  //   U_i = sum_j du_ij g_ij^T = (sum_j beta_ij du_ij phi_ij^T) M_i^+,
+  //   t_ij = beta_ij (2c du_ij + (V P_i [M_i^+]_(1..d) - 2c U_i) phi_ij),
+  // so each bond needs only r0 and beta, and each particle its M_i^+. Each lane adds its own t_ij
+  // to its particle and subtracts it from particle j's force: thread 0 into `force`, the others
+  // into their own copies (partial_), which are added at the end, so no two threads write the
+  // same entry. Thread t takes the t-th contiguous block of groups, so its copy is written only
+  // within the bond graph's bandwidth of that block: only that stretch is zeroed and added (the
+  // whole array when the particles are not ordered in space). Each thread keeps the group's r_ij
+  // in its own rows of scratch_. Nothing is allocated after the first call.
+  void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& /*bonds*/, VecArray<Dim, Scalar>& force) {
+    forces_and_stresses<false>(x, nullptr, force, nullptr, 0);
   }
 
   // The forces and, from the same fit, the Cauchy stress sigma_i = F_i S_i F_i^T / det F_i of
   // every particle (what stresses() gives at x): the solver asks for both when it reads the
   // stresses at every step (fracture), which then cost no pass over the bonds of their own.
-  void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& bonds, VecArray<Dim, Scalar>& force,
+  void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& /*bonds*/, VecArray<Dim, Scalar>& force,
                        MatArray<Dim, Scalar>& sigma) {
     sigma.resize(x.size());
-    forces_and_stresses(x, bonds, force, sigma.data());
+    forces_and_stresses<false>(x, nullptr, force, sigma.data(), 0);
+  }
+
+  // The forces (and the stresses, if `sigma` is given) with the bond viscosity added in the same
+  // pass over the bonds: what BondViscosity::add(bonds, x, v, viscosity, force) adds after
+  // internal_forces(), to round-off. Each bond's term, viscosity beta_ij |r0_ij|
+  // ((v_j - v_i) . r_ij) r_ij / |r_ij|^2, is antisymmetric in i and j, so half of it rides on t_ij
+  // (+ to i, - to j) and the reverse bond brings the other half.
+  void internal_forces(const VecArray<Dim, Scalar>& x, const VecArray<Dim, Scalar>& v, const BondList<Dim, Scalar>& /*bonds*/,
+                       VecArray<Dim, Scalar>& force, MatArray<Dim, Scalar>* sigma, Scalar viscosity) {
+    if (sigma) sigma->resize(x.size());
+    forces_and_stresses<true>(x, v.data(), force, sigma ? sigma->data() : nullptr, viscosity);
   }
 
  private:
-  void forces_and_stresses(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>&, VecArray<Dim, Scalar>& force,
-                           mat_type* const cauchy) {
+  template <bool Viscous>
+  void forces_and_stresses(const VecArray<Dim, Scalar>& x, const vec_type* const vel, VecArray<Dim, Scalar>& force,
+                           mat_type* const cauchy, const Scalar viscosity) {
     using lane_type = Eigen::Array<Scalar, lanes, 1>;
     using lane_map = Eigen::Map<const lane_type>;
     using packed_type = detail::PackedBonds<Dim, Scalar, lanes>;
@@ -114,6 +131,7 @@ class CorrectedTotalLagrangian {
     const Scalar inv_l0 = 1 / context_.l0;
     const Scalar lambda = context_.lame.lambda;
     const Scalar two_mu = 2 * context_.lame.mu;
+    const Scalar half_viscosity = Scalar(0.5) * viscosity;
     force.resize(count);
     if (count == 0) return;
     const std::size_t row = packed_.longest_row();
@@ -153,6 +171,12 @@ class CorrectedTotalLagrangian {
       lo = lo > band ? lo - band : 0;
       hi = std::min(count, hi + band);
     };
+    // phi(r0) = [r0, q(r0)/l0] as DeformationFit::basis, the quadratic part rebuilt from r0.
+    auto basis = [inv_l0](const Scalar* slot, lane_type (&phi)[width]) {
+      for (int a = 0; a < Dim; ++a) phi[a] = lane_map(slot + packed_type::r0_at(a));
+      for (int a = 0, c = Dim; a < Dim; ++a)
+        for (int b = a; b < Dim; ++b, ++c) phi[c] = (a == b ? Scalar(0.5) * inv_l0 : inv_l0) * phi[a] * phi[b];
+    };
     MPSFSI_OMP(parallel)
     {
       const int thread = parallel::thread_id();
@@ -160,7 +184,7 @@ class CorrectedTotalLagrangian {
       std::size_t block_lo, block_hi;
       block(thread, team, block_lo, block_hi);
       vec_type* const mine = thread == 0 ? out : partial + static_cast<std::size_t>(thread - 1) * count;
-      Scalar* const du = scratch + static_cast<std::size_t>(thread) * stride;
+      Scalar* const rows_r = scratch + static_cast<std::size_t>(thread) * stride;
       // Every thread zeroes its block of `force` (thread 0 writes all of it below) and the
       // stretch of its own copy that it writes.
       std::fill(out + block_lo, out + block_hi, vec_type::Zero());
@@ -177,15 +201,16 @@ class CorrectedTotalLagrangian {
         const std::size_t present = std::min<std::size_t>(lanes, count - i0);  // lanes with a particle
         const Offset first = packed_.begin(group);
         const auto m = static_cast<std::size_t>(packed_.end(group) - first);
+        const Scalar* const inverse = packed_.moments(group);
         lane_type xi[Dim];
         for (std::size_t l = 0; l < lanes; ++l) {
           const vec_type& p = pos[i0 + std::min(l, present - 1)];
           for (int a = 0; a < Dim; ++a) xi[a][l] = p[a];
         }
-        // du_ij = r_ij - r0_ij and U = A_i - [I 0] = sum_j du_ij g_ij^T.
-        lane_type u[Dim][width];
+        // r_ij, and B = sum_j beta_ij du_ij phi_ij^T with du_ij = r_ij - r0_ij.
+        lane_type bsum[Dim][width];
         for (int a = 0; a < Dim; ++a)
-          for (int c = 0; c < width; ++c) u[a][c].setZero();
+          for (int c = 0; c < width; ++c) bsum[a][c].setZero();
         for (std::size_t k = 0; k < m; ++k) {
           const Offset s = first + static_cast<Offset>(k);
           const Index* const nb = neighbors + static_cast<std::size_t>(s) * lanes;
@@ -195,12 +220,30 @@ class CorrectedTotalLagrangian {
             const vec_type& xj = pos[nb[l]];
             for (int a = 0; a < Dim; ++a) d[a][l] = xj[a];
           }
+          lane_type phi[width];
+          basis(slot, phi);
+          const lane_type beta = lane_map(slot + packed_type::beta_at);
           for (int a = 0; a < Dim; ++a) {
             d[a] -= xi[a];
-            d[a] -= lane_map(slot + packed_type::r0_at(a));
-            Eigen::Map<lane_type>(du + (k * Dim + static_cast<std::size_t>(a)) * lanes) = d[a];
-            for (int c = 0; c < width; ++c) u[a][c] += d[a] * lane_map(slot + packed_type::coefficient_at(c));
+            Eigen::Map<lane_type>(rows_r + (k * Dim + static_cast<std::size_t>(a)) * lanes) = d[a];
+            const lane_type weighted = beta * (d[a] - phi[a]);
+            for (int c = 0; c < width; ++c) bsum[a][c] += weighted * phi[c];
           }
+        }
+        // U = A_i - [I 0] = B M^+, over the stored triangle of M^+ in its order.
+        lane_type u[Dim][width];
+        for (int a = 0; a < Dim; ++a)
+          for (int c = 0; c < width; ++c) u[a][c].setZero();
+        {
+          const Scalar* entry = inverse;
+          for (int e = 0; e < width; ++e)
+            for (int c = e; c < width; ++c, entry += lanes) {
+              const lane_type m_ec = lane_map(entry);
+              for (int a = 0; a < Dim; ++a) {
+                u[a][c] += bsum[a][e] * m_ec;
+                if (c != e) u[a][e] += bsum[a][c] * m_ec;
+              }
+            }
         }
         // Per lane: F = I + U[:, :Dim], E = (F^T F - I)/2, S = lambda tr(E) I + 2 mu E, and
         // V P = V F S (detail::green_strain, svk_stress, written out lane-wise).
@@ -225,27 +268,62 @@ class CorrectedTotalLagrangian {
             vp[a][b] *= v;
           }
         if (cauchy) store_cauchy(u, vp, v, i0, present, cauchy);
-        // t_ij = V P_i g_ij + 2c beta_ij (du_ij - U phi(r0_ij)): + to i, - to j.
+        // W = V P [M^+]_(1..d) - 2c U, so that t_ij = beta_ij (2c du_ij + W phi_ij).
+        lane_type w[Dim][width];
+        for (int a = 0; a < Dim; ++a)
+          for (int c = 0; c < width; ++c) w[a][c] = -c2 * u[a][c];
+        {
+          const Scalar* entry = inverse;  // rows b < Dim of the triangle come first
+          for (int b = 0; b < Dim; ++b)
+            for (int c = b; c < width; ++c, entry += lanes) {
+              const lane_type m_bc = lane_map(entry);
+              for (int a = 0; a < Dim; ++a) {
+                w[a][c] += vp[a][b] * m_bc;
+                if (c != b && c < Dim) w[a][b] += vp[a][c] * m_bc;
+              }
+            }
+        }
+        lane_type vi[Dim];
+        if constexpr (Viscous)
+          for (std::size_t l = 0; l < lanes; ++l) {
+            const vec_type& p = vel[i0 + std::min(l, present - 1)];
+            for (int a = 0; a < Dim; ++a) vi[a][l] = p[a];
+          }
         lane_type own[Dim];
         for (int a = 0; a < Dim; ++a) own[a].setZero();
         for (std::size_t k = 0; k < m; ++k) {
           const Offset s = first + static_cast<Offset>(k);
           const Index* const nb = neighbors + static_cast<std::size_t>(s) * lanes;
           const Scalar* const slot = blocks + static_cast<std::size_t>(s) * slot_size;
-          // phi(r0) = [r0, q(r0)/l0] as DeformationFit::basis, the quadratic part rebuilt here.
           lane_type phi[width];
-          for (int a = 0; a < Dim; ++a) phi[a] = lane_map(slot + packed_type::r0_at(a));
-          for (int a = 0, c = Dim; a < Dim; ++a)
-            for (int b = a; b < Dim; ++b, ++c) phi[c] = (a == b ? Scalar(0.5) * inv_l0 : inv_l0) * phi[a] * phi[b];
-          const lane_type cb = c2 * lane_map(slot + packed_type::beta_at);
-          lane_type t[Dim];
+          basis(slot, phi);
+          const lane_type beta = lane_map(slot + packed_type::beta_at);
+          lane_type r[Dim], t[Dim];
           for (int a = 0; a < Dim; ++a) {
-            lane_type delta = lane_map(du + (k * Dim + static_cast<std::size_t>(a)) * lanes);
-            for (int c = 0; c < width; ++c) delta -= u[a][c] * phi[c];
-            t[a] = cb * delta;
-            for (int c = 0; c < Dim; ++c) t[a] += vp[a][c] * lane_map(slot + packed_type::coefficient_at(c));
-            own[a] += t[a];
+            r[a] = lane_map(rows_r + (k * Dim + static_cast<std::size_t>(a)) * lanes);
+            lane_type sum = c2 * (r[a] - phi[a]);
+            for (int c = 0; c < width; ++c) sum += w[a][c] * phi[c];
+            t[a] = beta * sum;
           }
+          if constexpr (Viscous) {
+            lane_type dv[Dim];
+            for (std::size_t l = 0; l < lanes; ++l) {
+              const vec_type& vj = vel[nb[l]];
+              for (int a = 0; a < Dim; ++a) dv[a][l] = vj[a];
+            }
+            lane_type rate = (dv[0] - vi[0]) * r[0], length2 = r[0] * r[0], reference2 = phi[0] * phi[0];
+            for (int a = 1; a < Dim; ++a) {
+              rate += (dv[a] - vi[a]) * r[a];
+              length2 += r[a] * r[a];
+              reference2 += phi[a] * phi[a];
+            }
+            // A padding slot (beta = 0, r = 0) and coincident particles (r = 0) have rate = 0 and
+            // add nothing: the divisor is kept off zero.
+            const lane_type scale =
+                half_viscosity * beta * reference2.sqrt() * rate / length2.max(std::numeric_limits<Scalar>::min());
+            for (int a = 0; a < Dim; ++a) t[a] += scale * r[a];
+          }
+          for (int a = 0; a < Dim; ++a) own[a] += t[a];
           for (std::size_t l = 0; l < lanes; ++l) {
             vec_type& fj = mine[nb[l]];
             for (int a = 0; a < Dim; ++a) fj[a] -= t[a][l];
@@ -319,7 +397,7 @@ class CorrectedTotalLagrangian {
   detail::PackedBonds<Dim, Scalar, lanes> packed_;
   VecArray<Dim, Scalar> partial_;  // the forces threads 1.. add up, one copy per thread
   VecArray<Dim, Scalar> unused_force_;  // what stresses() computes besides them
-  std::vector<Scalar> scratch_;  // du_ij of the group in hand (Dim x lanes per slot), per thread
+  std::vector<Scalar> scratch_;  // r_ij of the group in hand (Dim x lanes per slot), per thread
 };
 
 }  // namespace MPSFSI_ABI

@@ -53,6 +53,7 @@ class DeformationFit {
   using basis_type = Eigen::Matrix<Scalar, width, 1>;
   using quad_type = Eigen::Matrix<Scalar, quad, 1>;
   using affine_type = Eigen::Matrix<Scalar, Dim, width>;
+  using moment_type = Eigen::Matrix<Scalar, width, width>;
 
   // Fit coefficients of every bond, for the bonds as they are now, which become the reference
   // neighbourhoods: each particle keeps the largest eigenvalue of its linear moment matrix (a full
@@ -61,6 +62,7 @@ class DeformationFit {
     inv_l0_ = 1 / l0;
     const std::size_t n = bonds.num_particles();
     coeff_.resize(bonds.num_bonds());
+    inverse_moment_.resize(n);
     gradient_sum_.resize(n);
     reference_moment_.resize(n);
     MPSFSI_OMP(parallel for schedule(dynamic, 64))
@@ -92,6 +94,10 @@ class DeformationFit {
       pinv.template topLeftCorner<Dim, Dim>() =
           linear.eigenvectors() * inverse.asDiagonal() * linear.eigenvectors().transpose();
     }
+    // Symmetric to the bit, so that the force loop, which reads one triangle of it, and the
+    // coefficients below use the same matrix.
+    pinv = (Scalar(0.5) * (pinv + pinv.transpose())).eval();
+    inverse_moment_[i] = pinv;
     vec_type sum = vec_type::Zero();
     for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
       coeff_[static_cast<std::size_t>(b)] = bonds.beta(b) * (pinv * basis(bonds.r0(b)));
@@ -169,10 +175,13 @@ class DeformationFit {
     a.value(inv_l0_);
     a.array(reference_moment_);
     a.array(coeff_);
+    a.array(inverse_moment_);
     a.array(gradient_sum_);
   }
 
   const std::vector<basis_type>& coefficients() const { return coeff_; }
+  // M_i^+ as used above (symmetric): g_ij = beta_ij M_i^+ phi(r0_ij) for every bond of i.
+  const moment_type& inverse_moment(std::size_t i) const { return inverse_moment_[i]; }
   const vec_type& gradient_sum(std::size_t i) const { return gradient_sum_[i]; }
 
  private:
@@ -225,6 +234,7 @@ class DeformationFit {
   Scalar inv_l0_ = 1;
   std::vector<Scalar> reference_moment_;
   std::vector<basis_type> coeff_;
+  std::vector<moment_type, Eigen::aligned_allocator<moment_type>> inverse_moment_;
   VecArray<Dim, Scalar> gradient_sum_;
 };
 

@@ -155,7 +155,7 @@ class ElasticSolver {
     mass_ = p_.density * context_.volume;
     if constexpr (can_fail) fracture_.initialize(set_, p_, context_.volume);
     model_.initialize(bonds_, context_);
-    if (p_.bond_viscosity > 0) viscosity_.initialize(bonds_);
+    if (p_.bond_viscosity > 0 && !model_adds_viscosity) viscosity_.initialize(bonds_);
     contact_.initialize(n, p_.contact_distance(), p_.contact_stiffness(),
                         2 * p_.contact_damping_ratio * std::sqrt(p_.contact_stiffness() * 0.5 * mass_));
     constraint_.assign(n, Constraint::free);
@@ -429,7 +429,7 @@ class ElasticSolver {
         external_.size() != n || force_.size() != n)
       detail::throw_invalid("ElasticSolver", "the checkpoint's arrays do not match its particle count");
     model_.checkpoint_restored(bonds_);
-    if (p_.bond_viscosity > 0) viscosity_.initialize(bonds_);
+    if (p_.bond_viscosity > 0 && !model_adds_viscosity) viscosity_.initialize(bonds_);
     stresses_current_ = false;
   }
 
@@ -468,6 +468,17 @@ class ElasticSolver {
   // returns whether it did.
   bool compute_forces(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force,
                       MatArray<Dim, double>* stresses = nullptr) {
+    const double viscosity =
+        p_.bond_viscosity * p_.density * p_.p_wave_speed() * context_.volume * Dim / context_.n0;
+    if constexpr (model_adds_viscosity) {
+      // The stress model adds the bond viscosity in its own pass over the bonds.
+      if (p_.bond_viscosity > 0) {
+        const bool with_stresses = stresses && detail::has_model_forces_with_stresses<stress_model_type, Dim>::value;
+        model_.internal_forces(x, v, bonds_, force, with_stresses ? stresses : nullptr, viscosity);
+        contact_.add_forces(x, v, bonds_, force);
+        return with_stresses;
+      }
+    }
     bool with_stresses = false;
     if constexpr (detail::has_model_forces_with_stresses<stress_model_type, Dim>::value) {
       if (stresses) {
@@ -477,9 +488,7 @@ class ElasticSolver {
     }
     if (!with_stresses) model_.internal_forces(x, bonds_, force);
     contact_.add_forces(x, v, bonds_, force);
-    if (p_.bond_viscosity > 0)
-      viscosity_.add(bonds_, x, v, p_.bond_viscosity * p_.density * p_.p_wave_speed() * context_.volume * Dim / context_.n0,
-                     force);
+    if (p_.bond_viscosity > 0) viscosity_.add(bonds_, x, v, viscosity, force);
     return with_stresses;
   }
 
@@ -570,6 +579,8 @@ class ElasticSolver {
   SolidModelContext<Dim, double> context_;
   stress_model_type model_;
   contact_type contact_;
+  // Whether the stress model adds the bond viscosity in its force pass (then viscosity_ stays empty).
+  static constexpr bool model_adds_viscosity = detail::has_model_forces_with_viscosity<stress_model_type, Dim>::value;
   BondViscosity<Dim> viscosity_;
   fracture_type fracture_;
   double mass_ = 0;

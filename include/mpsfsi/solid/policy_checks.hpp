@@ -61,6 +61,18 @@ struct has_model_forces_with_stresses<M, Dim,
                                           std::declval<VecArray<Dim, double>&>(), std::declval<MatArray<Dim, double>&>()))>>
     : std::true_type {};
 
+// Optional: the forces, the stresses (when given) and the bond viscosity (BondViscosity's sum with
+// the given coefficient) in one pass.
+template <class M, int Dim, class = void>
+struct has_model_forces_with_viscosity : std::false_type {};
+template <class M, int Dim>
+struct has_model_forces_with_viscosity<
+    M, Dim,
+    std::void_t<decltype(std::declval<M&>().internal_forces(
+        std::declval<const VecArray<Dim, double>&>(), std::declval<const VecArray<Dim, double>&>(),
+        std::declval<const BondList<Dim, double>&>(), std::declval<VecArray<Dim, double>&>(),
+        std::declval<MatArray<Dim, double>*>(), std::declval<double>()))>> : std::true_type {};
+
 template <class M, int Dim, class = void>
 struct has_model_stresses : std::false_type {};
 template <class M, int Dim>

@@ -18,29 +18,34 @@ namespace mpsfsi {
 inline namespace MPSFSI_ABI {
 namespace detail {
 
-// The per-bond constants of the corrected model's force loop, laid out so that the loop runs over
-// `Lanes` particles at once, one per SIMD lane. Particles are taken in groups of `Lanes`
-// consecutive ones (group G holds particles Lanes G .. Lanes G + Lanes - 1); a group's row has as
-// many slots as its particle with the most bonds, and slot k holds the k-th bond of every particle
-// of the group, lane l for particle Lanes G + l. Per slot, `Lanes` neighbour indices and one
-// contiguous block of `rows` x `Lanes` scalars: r0_ij (Dim rows), beta_ij, then the fit
-// coefficients g_ij (DeformationFit::width rows), so the loop streams one array and loads every
-// quantity of a slot as one register. The quadratic part of phi(r0) is not stored but recomputed
-// from r0 in the loop: at 1e4 particles and more the step is limited by memory traffic. A padding
-// slot (a particle with fewer bonds than its group's longest row, or a lane past the last
-// particle) points at the lane's own particle, or the last particle, with r0 = beta = g = 0, so
-// everything it contributes is an exact zero.
+// The constants of the corrected model's force loop, laid out so that the loop runs over `Lanes`
+// particles at once, one per SIMD lane. Particles are taken in groups of `Lanes` consecutive ones
+// (group G holds particles Lanes G .. Lanes G + Lanes - 1); a group's row has as many slots as its
+// particle with the most bonds, and slot k holds the k-th bond of every particle of the group,
+// lane l for particle Lanes G + l. Per slot, `Lanes` neighbour indices and one contiguous block of
+// `rows` x `Lanes` scalars: r0_ij (Dim rows), then beta_ij. Per group, one block of the particles'
+// M_i^+ (DeformationFit::inverse_moment), its upper triangle, `moment_rows` x `Lanes` scalars. The
+// fit coefficients g_ij = beta_ij M_i^+ phi(r0_ij) are not stored: the loop works with M_i^+ and
+// phi(r0) (recomputed from r0), which takes less than half the bytes a bond (about 49 against 108
+// in 3D, 38 against 68 in 2D); at 1e4 particles and more the step is limited by memory traffic. A
+// padding slot (a particle with fewer bonds than its group's longest row, or a lane past the last
+// particle) points at the lane's own particle, or the last particle, with r0 = beta = 0, so
+// everything it contributes is an exact zero; a lane past the last particle has M^+ = 0.
 template <int Dim, class Scalar, int Lanes>
 class PackedBonds {
  public:
   using fit_type = DeformationFit<Dim, Scalar>;
   static constexpr int width = fit_type::width;
-  static constexpr int rows = Dim + 1 + width;  // scalars per bond: r0, beta, g
+  static constexpr int rows = Dim + 1;  // scalars per bond: r0, beta
+  static constexpr int moment_rows = width * (width + 1) / 2;
   static constexpr std::size_t lanes = Lanes;
   // Offsets of the quantities within a slot's block, in scalars.
   static constexpr int r0_at(int a) { return a * Lanes; }
   static constexpr int beta_at = Dim * Lanes;
-  static constexpr int coefficient_at(int c) { return (Dim + 1 + c) * Lanes; }
+  // Offset of M^+(a, b) = M^+(b, a) within a group's moment block, in scalars.
+  static constexpr int moment_at(int a, int b) {
+    return a <= b ? (a * width - a * (a - 1) / 2 + (b - a)) * Lanes : moment_at(b, a);
+  }
 
   void build(const fit_type& fit, const BondList<Dim, Scalar>& bonds) {
     particles_ = bonds.num_particles();
@@ -56,6 +61,7 @@ class PackedBonds {
     }
     const auto slots = static_cast<std::size_t>(first_[groups]);
     data_.assign(slots * rows * lanes, Scalar(0));
+    moment_.assign(groups * moment_rows * lanes, Scalar(0));
     neighbor_.resize(slots * lanes);
     std::size_t band = 0;
     MPSFSI_OMP(parallel for schedule(static) reduction(max : band))
@@ -73,8 +79,8 @@ class PackedBonds {
     bandwidth_ = band;
   }
 
-  // Copies particle i's neighbours, weights and coefficients again (after its bonds were cut and
-  // its fit rebuilt).
+  // Copies particle i's neighbours, reference vectors, weights and M_i^+ again (after its bonds
+  // were cut and its fit rebuilt).
   void update(const fit_type& fit, const BondList<Dim, Scalar>& bonds, std::size_t i) {
     const std::size_t lane = i % lanes;
     const Offset first = first_[i / lanes];
@@ -87,13 +93,15 @@ class PackedBonds {
         neighbor_[s * lanes + lane] = bonds.neighbor(b);
         for (int a = 0; a < Dim; ++a) block[r0_at(a)] = bonds.r0(b)[a];
         block[beta_at] = bonds.beta(b);
-        const auto& g = fit.coefficients()[static_cast<std::size_t>(b)];
-        for (int c = 0; c < width; ++c) block[coefficient_at(c)] = g[c];
       } else {
         neighbor_[s * lanes + lane] = static_cast<Index>(i);
         for (int r = 0; r < rows; ++r) block[r * Lanes] = 0;
       }
     }
+    Scalar* const m = moment_.data() + (i / lanes) * moment_rows * lanes + lane;
+    const auto& inverse = fit.inverse_moment(i);
+    for (int a = 0; a < width; ++a)
+      for (int b = a; b < width; ++b) m[moment_at(a, b)] = inverse(a, b);
   }
 
   std::size_t num_particles() const { return particles_; }
@@ -107,6 +115,8 @@ class PackedBonds {
   // Slot s's `Lanes` neighbour indices and its block of `rows` x `Lanes` scalars.
   const Index* neighbors(Offset s) const { return neighbor_.data() + static_cast<std::size_t>(s) * lanes; }
   const Scalar* block(Offset s) const { return data_.data() + static_cast<std::size_t>(s) * rows * lanes; }
+  // Group g's block of moment_rows x `Lanes` scalars (moment_at).
+  const Scalar* moments(std::size_t group) const { return moment_.data() + group * moment_rows * lanes; }
 
  private:
   std::size_t particles_ = 0;
@@ -114,6 +124,7 @@ class PackedBonds {
   std::size_t longest_ = 0;
   std::size_t bandwidth_ = 0;
   std::vector<Scalar, Eigen::aligned_allocator<Scalar>> data_;  // aligned to the SIMD register
+  std::vector<Scalar, Eigen::aligned_allocator<Scalar>> moment_;
   std::vector<Index> neighbor_;
 };
 
