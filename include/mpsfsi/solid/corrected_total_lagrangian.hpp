@@ -87,7 +87,8 @@ class CorrectedTotalLagrangian {
   // with g_ij = beta_ij M_i^+ phi_ij (DeformationFit, M_i^+ symmetric),
   //   U_i = sum_j du_ij g_ij^T = (sum_j beta_ij du_ij phi_ij^T) M_i^+,
   //   t_ij = beta_ij (2c du_ij + (V P_i [M_i^+]_(1..d) - 2c U_i) phi_ij),
-  // so each bond needs only r0 and beta, and each particle its M_i^+. Each lane adds its own t_ij
+  // so each bond needs only r0 and beta (and beta |r0| for the viscosity), and each particle its
+  // M_i^+. Each lane adds its own t_ij
   // to its particle and subtracts it from particle j's force: thread 0 into `force`, the others
   // into their own copies (partial_), which are added at the end, so no two threads write the
   // same entry. Thread t takes the t-th contiguous block of groups, so its copy is written only
@@ -311,16 +312,15 @@ class CorrectedTotalLagrangian {
               const vec_type& vj = vel[nb[l]];
               for (int a = 0; a < Dim; ++a) dv[a][l] = vj[a];
             }
-            lane_type rate = (dv[0] - vi[0]) * r[0], length2 = r[0] * r[0], reference2 = phi[0] * phi[0];
+            lane_type rate = (dv[0] - vi[0]) * r[0], length2 = r[0] * r[0];
             for (int a = 1; a < Dim; ++a) {
               rate += (dv[a] - vi[a]) * r[a];
               length2 += r[a] * r[a];
-              reference2 += phi[a] * phi[a];
             }
             // A padding slot (beta = 0, r = 0) and coincident particles (r = 0) have rate = 0 and
             // add nothing: the divisor is kept off zero.
             const lane_type scale =
-                half_viscosity * beta * reference2.sqrt() * rate / length2.max(std::numeric_limits<Scalar>::min());
+                half_viscosity * lane_map(slot + packed_type::viscous_weight_at) * rate / length2.max(std::numeric_limits<Scalar>::min());
             for (int a = 0; a < Dim; ++a) t[a] += scale * r[a];
           }
           for (int a = 0; a < Dim; ++a) own[a] += t[a];

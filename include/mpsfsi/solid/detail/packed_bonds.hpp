@@ -23,11 +23,12 @@ namespace detail {
 // (group G holds particles Lanes G .. Lanes G + Lanes - 1); a group's row has as many slots as its
 // particle with the most bonds, and slot k holds the k-th bond of every particle of the group,
 // lane l for particle Lanes G + l. Per slot, `Lanes` neighbour indices and one contiguous block of
-// `rows` x `Lanes` scalars: r0_ij (Dim rows), then beta_ij. Per group, one block of the particles'
+// `rows` x `Lanes` scalars: r0_ij (Dim rows), beta_ij, then beta_ij |r0_ij| (the bond viscosity's
+// weight, BondViscosity). Per group, one block of the particles'
 // M_i^+ (DeformationFit::inverse_moment), its upper triangle, `moment_rows` x `Lanes` scalars. The
 // fit coefficients g_ij = beta_ij M_i^+ phi(r0_ij) are not stored: the loop works with M_i^+ and
-// phi(r0) (recomputed from r0), which takes less than half the bytes a bond (about 49 against 108
-// in 3D, 38 against 68 in 2D); at 1e4 particles and more the step is limited by memory traffic. A
+// phi(r0) (recomputed from r0), which takes about half the bytes a bond (about 56 against 108 in
+// 3D, 46 against 68 in 2D); at 1e4 particles and more the step is limited by memory traffic. A
 // padding slot (a particle with fewer bonds than its group's longest row, or a lane past the last
 // particle) points at the lane's own particle, or the last particle, with r0 = beta = 0, so
 // everything it contributes is an exact zero; a lane past the last particle has M^+ = 0.
@@ -36,12 +37,13 @@ class PackedBonds {
  public:
   using fit_type = DeformationFit<Dim, Scalar>;
   static constexpr int width = fit_type::width;
-  static constexpr int rows = Dim + 1;  // scalars per bond: r0, beta
+  static constexpr int rows = Dim + 2;  // scalars per bond: r0, beta, beta |r0|
   static constexpr int moment_rows = width * (width + 1) / 2;
   static constexpr std::size_t lanes = Lanes;
   // Offsets of the quantities within a slot's block, in scalars.
   static constexpr int r0_at(int a) { return a * Lanes; }
   static constexpr int beta_at = Dim * Lanes;
+  static constexpr int viscous_weight_at = (Dim + 1) * Lanes;  // beta |r0| = w0 / |r0| (bond viscosity)
   // Offset of M^+(a, b) = M^+(b, a) within a group's moment block, in scalars.
   static constexpr int moment_at(int a, int b) {
     return a <= b ? (a * width - a * (a - 1) / 2 + (b - a)) * Lanes : moment_at(b, a);
@@ -93,6 +95,7 @@ class PackedBonds {
         neighbor_[s * lanes + lane] = bonds.neighbor(b);
         for (int a = 0; a < Dim; ++a) block[r0_at(a)] = bonds.r0(b)[a];
         block[beta_at] = bonds.beta(b);
+        block[viscous_weight_at] = bonds.beta(b) * bonds.r0(b).norm();
       } else {
         neighbor_[s * lanes + lane] = static_cast<Index>(i);
         for (int r = 0; r < rows; ++r) block[r * Lanes] = 0;
