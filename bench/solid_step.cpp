@@ -49,7 +49,8 @@ void solid_forces(benchmark::State& state) {
   bench::BenchPlate<Dim> plate(state.range(0));
   const auto& p = plate.params;
   BondList<Dim> bonds;
-  bonds.template build<KoshizukaWeight>(plate.particles.positions(), std::vector<std::int32_t>(plate.particles.size(), 0), p.re());
+  const std::vector<std::int32_t> one_body(plate.particles.size(), 0);
+  bonds.template build<KoshizukaWeight>(plate.particles.positions(), one_body, p.re());
   const auto lattice = ideal_lattice_constants<Dim, KoshizukaWeight>(p.l0, p.re());
   const SolidModelContext<Dim> context{p.lame(), p.density, p.l0, std::pow(p.l0, Dim), lattice.n0, lattice.lambda};
   CorrectedTotalLagrangian<Dim> model;

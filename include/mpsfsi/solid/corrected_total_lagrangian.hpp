@@ -319,8 +319,8 @@ class CorrectedTotalLagrangian {
             }
             // A padding slot (beta = 0, r = 0) and coincident particles (r = 0) have rate = 0 and
             // add nothing: the divisor is kept off zero.
-            const lane_type scale =
-                half_viscosity * lane_map(slot + packed_type::viscous_weight_at) * rate / length2.max(std::numeric_limits<Scalar>::min());
+            const lane_type weight = lane_map(slot + packed_type::viscous_weight_at);
+            const lane_type scale = half_viscosity * weight * rate / length2.max(std::numeric_limits<Scalar>::min());
             for (int a = 0; a < Dim; ++a) t[a] += scale * r[a];
           }
           for (int a = 0; a < Dim; ++a) own[a] += t[a];
