@@ -26,7 +26,8 @@ inline namespace MPSFSI_ABI {
 //   Scalar strain_energy(const VecArray& x, const BondList&) const;
 //   void kick(Scalar dt); void drift(Scalar dt);   // particle rotation, if the model has it
 // and optionally internal_forces(x, bonds, force, sigma), the forces and the stresses of x in one
-// pass (docs/extending.md, "Stress model"). internal_forces() is called once per step on the new
+// pass, and internal_forces(x, v, bonds, force, sigma*, viscosity), those with the bond viscosity
+// added (docs/extending.md, "Stress model"). internal_forces() is called once per step on the new
 // positions; the others on demand.
 
 // Corrected total-Lagrangian solid with the St Venant-Kirchhoff law (docs/theory.md, section 3.3,
@@ -138,7 +139,7 @@ class CorrectedTotalLagrangian {
     const std::size_t row = packed_.longest_row();
     const int threads = parallel::max_threads();
     // Each thread's rows start on a cache line of their own: with a 16-byte aligned block, two
-    // threads' du rows shared a line, and that false sharing made the 2-thread step slower than
+    // threads' scratch rows shared a line, and that false sharing made the 2-thread step slower than
     // the 1-thread one (1.1 ms against 0.9 ms, 2D benchmark at 16,160 particles).
     constexpr std::size_t line = 64 / sizeof(Scalar);
     const std::size_t stride = (Dim * lanes * row + line - 1) / line * line;

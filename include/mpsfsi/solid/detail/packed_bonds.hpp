@@ -27,8 +27,8 @@ namespace detail {
 // weight, BondViscosity). Per group, one block of the particles' M_i^+
 // (DeformationFit::inverse_moment), its upper triangle, `moment_rows` x `Lanes` scalars. The fit
 // coefficients g_ij = beta_ij M_i^+ phi(r0_ij) are not stored: the loop works with M_i^+ and
-// phi(r0) (recomputed from r0), which takes about half the bytes a bond (about 56 against 108 in
-// 3D, 46 against 68 in 2D; docs/performance.md, the solid's force loop). A padding slot (a
+// phi(r0) (recomputed from r0), which takes about half the bytes a bond in 3D (about 56 against
+// 108) and two thirds in 2D (46 against 68; docs/performance.md, the solid's force loop). A padding slot (a
 // particle with fewer bonds than its group's longest row, or a lane past the last particle) points
 // at the lane's own particle, or the last particle, with r0 = beta = 0, so everything it
 // contributes is an exact zero; a lane past the last particle has M^+ = 0.
