@@ -8,7 +8,6 @@
 #include <limits>
 #include <string>
 #include <type_traits>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -25,6 +24,7 @@
 #include "mpsfsi/solid/corrected_total_lagrangian.hpp"
 #include "mpsfsi/solid/crack_plane.hpp"
 #include "mpsfsi/solid/deformation.hpp"
+#include "mpsfsi/solid/detail/blowup_check.hpp"
 #include "mpsfsi/solid/detail/spacing_check.hpp"
 #include "mpsfsi/solid/failure_slot.hpp"
 #include "mpsfsi/solid/fragments.hpp"
@@ -137,7 +137,7 @@ class ElasticSolver {
     reference_ = set_.positions();
     body_ = set_.template add_field<std::int32_t>("body");
     set_.field(body_) = body;
-    number_bodies(body);
+    blowup_check_ = detail::BodyBlowupCheck<Dim>(body);
     constraint_field_ = set_.template add_field<std::int32_t>("constraint");
     displacement_ = set_.template add_field<vec_type>("displacement");
     stress_field_ = set_.template add_field<mat_type>("stress");
@@ -247,7 +247,9 @@ class ElasticSolver {
       const vec_type a = inv_m * (force_next_[i] + external_[i]) + p_.gravity;  // at the new positions
       v_next_[i] = constrained(i, decay * (v_next_[i] + 0.5 * dt * a));
     }
-    check_blowup(dt);
+    // Throws, before anything is committed, if the step blows up.
+    blowup_check_.check(x_next_, v_next_, set_.ids(), p_.blowup_speed_factor * p_.p_wave_speed(), step_count_ + 1,
+                        time_ + dt);
     model_.kick(0.5 * dt);
     set_.positions().swap(x_next_);
     set_.velocities().swap(v_next_);
@@ -520,54 +522,6 @@ class ElasticSolver {
     stresses_current_ = false;
   }
 
-  // Throws SimulationError, before anything is committed, if a new position or velocity is not
-  // finite or a particle would move faster than blowup_speed_factor times the P-wave speed relative
-  // to the mean velocity of its body. Relative, because no elastic wave carries a particle past
-  // its neighbours that fast, while a body may translate or turn rigidly at any speed.
-  void check_blowup(double dt) {
-    const std::size_t n = set_.size();
-    std::fill(body_velocity_.begin(), body_velocity_.end(), vec_type::Zero());
-    for (std::size_t i = 0; i < n; ++i) body_velocity_[body_index_[i]] += v_next_[i];  // one pass, O(n)
-    for (std::size_t b = 0; b < body_velocity_.size(); ++b) body_velocity_[b] /= body_size_[b];
-    const double limit = p_.blowup_speed_factor * p_.p_wave_speed();
-    long long bad = -1;
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      const bool finite = x_next_[i].allFinite() && v_next_[i].allFinite();
-      if (!finite || !((v_next_[i] - body_velocity_[body_index_[i]]).norm() <= limit)) {
-        MPSFSI_OMP(atomic write)
-        bad = static_cast<long long>(i);
-      }
-    }
-    if (bad < 0) return;
-    const auto i = static_cast<std::size_t>(bad);
-    const vec_type relative = v_next_[i] - body_velocity_[body_index_[i]];
-    const std::string what =
-        !x_next_[i].allFinite() || !v_next_[i].allFinite()
-            ? std::string("its position or velocity is not finite")
-            : "it would move at " + detail::format_number(relative.norm()) + " m/s relative to its body (" +
-                  detail::format_number(v_next_[i].norm()) + " m/s absolute), limit " + detail::format_number(limit) +
-                  " m/s (the P-wave speed times blowup_speed_factor)";
-    throw SimulationError("ElasticSolver: blow-up at step " + std::to_string(step_count_ + 1) + " (t = " +
-                              detail::format_number(time_ + dt) + " s): particle " + std::to_string(i) + " (id " +
-                              std::to_string(set_.ids()[i]) + "): " + what,
-                          step_count_ + 1, time_ + dt, bad);
-  }
-
-  // Dense body numbers 0, 1, ... in order of first appearance, and the particle count of each.
-  void number_bodies(const std::vector<std::int32_t>& body) {
-    std::unordered_map<std::int32_t, std::size_t> number;
-    body_index_.resize(body.size());
-    for (std::size_t i = 0; i < body.size(); ++i) {
-      const auto [it, added] = number.try_emplace(body[i], number.size());
-      if (added) body_size_.push_back(0);
-      body_index_[i] = it->second;
-      body_size_[it->second] += 1;
-    }
-    body_velocity_.assign(number.size(), vec_type::Zero());
-  }
-
   // Overlapping particles (closer than l0/2) and a spacing that disagrees with l0
   // (detail::check_solid_spacing) are errors.
   void check_spacing() const { detail::check_solid_spacing(set_.positions(), p_.l0); }
@@ -593,9 +547,7 @@ class ElasticSolver {
   VecArray<Dim, double> external_, force_;
   VecArray<Dim, double> x_next_, v_next_, force_next_;
   MatArray<Dim, double> stress_next_;  // the stresses of x_next_, when the stress model gives them
-  std::vector<std::size_t> body_index_;  // dense body number of each particle
-  std::vector<double> body_size_;        // particles per body
-  VecArray<Dim, double> body_velocity_;  // mean velocity per body, for the blow-up check
+  detail::BodyBlowupCheck<Dim> blowup_check_;
   double time_ = 0, last_dt_ = 0;
   long long step_count_ = 0;
   bool stresses_current_ = false;
