@@ -235,11 +235,12 @@ mpsfsi::FsiCoupler<mpsfsi::FluidSolver<Dim>, mpsfsi::ElasticSolver<Dim>, Scheme>
     return FsiCoupler<FluidSolver<2>, ElasticSolver<2>, Scheme>(scene.fluid_particles(fp.l0), fp, std::move(plate), {},
                                                                 scheme);
   } else {
-    // The gate in a short, low tank: most of the full scene's particles are in its side walls,
-    // which run the whole floor's length.
+    // The gate in a short, low, narrow tank: most of the full scene's particles are in its side
+    // walls, which run the whole floor's length.
     scenes::ElasticGate scene;
     scene.water_height = 0.09;
     scene.floor_length = 0.02;
+    scene.width = 0.01;
     sp.l0 = fp.l0 = 0.0025;
     scene.set_material(sp);
     sp.gravity = fp.gravity = scene.gravity_vector<3>();
