@@ -35,8 +35,9 @@ inline namespace MPSFSI_ABI {
 // leave_out_enclosed, it takes them out of the system (P = 0 there) and assembles again; an
 // enclosed region with fluid in it is otherwise left for the caller to report
 // (enclosed_fluid()).
-// Assembled straight into CSR: one counting pass, a prefix sum, one filling pass, OpenMP over
-// rows, each row sorted by column. The arrays keep their capacity from one step to the next.
+// Assembled in one pass over the pairs into scratch rows sized by the neighbour list, each row
+// sorted by column, then packed into CSR; OpenMP over rows. The arrays keep their capacity from
+// one step to the next.
 template <class Weight, int Dim, class Scalar>
 class PpeAssembler {
  public:
@@ -85,34 +86,22 @@ class PpeAssembler {
     a.resize(rows, rows);
     b.resize(rows);
     anchored_.assign(static_cast<std::size_t>(rows), 0);
-    int* outer = a.outerIndexPtr();
+    // Row r (particle i) has at most 1 + (its neighbours) entries: pass 1 writes them, diagonal
+    // first, into the scratch rows at list.begin(i) + r, which do not overlap.
+    scratch_cols_.resize(list.indices.size() + static_cast<std::size_t>(rows));
+    scratch_vals_.resize(scratch_cols_.size());
+    int* const outer = a.outerIndexPtr();
 
-    // Pass 1: entries per row (the diagonal plus every neighbour that is an unknown).
-    outer[0] = 0;
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t r = 0; r < rows; ++r) {
-      const auto i = static_cast<std::size_t>(particle_of_row_[static_cast<std::size_t>(r)]);
-      int count = 1;
-      for (Offset k = list.begin(i); k < list.end(i); ++k) {
-        const auto j = static_cast<std::size_t>(list.indices[k]);
-        if (row_of_[j] < 0) continue;
-        const Vec<Dim, Scalar> rij = x[j] - x[i];
-        if (Weight::value(detail::pair_distance(list, k, rij), lap.re) > 0) ++count;
-      }
-      outer[r + 1] = count;
-    }
-    for (std::int64_t r = 0; r < rows; ++r) outer[r + 1] += outer[r];
-    a.resizeNonZeros(outer[rows]);
-    int* cols = a.innerIndexPtr();
-    double* vals = a.valuePtr();
-
-    // Pass 2: values; the row is then insertion-sorted by column (rows hold ~30 entries).
+    // Pass 1, over the pairs: values, and each row's count into outer[r + 1]; the row is then
+    // insertion-sorted by column (about 30 entries in 2D, 120 in 3D).
     const Scalar c = Scalar(2 * Dim) / (lap.lambda * lap.n0);
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t r = 0; r < rows; ++r) {
       const auto i = static_cast<std::size_t>(particle_of_row_[static_cast<std::size_t>(r)]);
-      int pos = outer[r];
-      const int diag_pos = pos++;
+      const Offset first = list.begin(i) + static_cast<Offset>(r);
+      int* const cols = scratch_cols_.data() + first;
+      double* const vals = scratch_vals_.data() + first;
+      int count = 1;  // the diagonal at 0
       Scalar diag = 0, ghost = 0;
       for (Offset k = list.begin(i); k < list.end(i); ++k) {
         const auto j = static_cast<std::size_t>(list.indices[k]);
@@ -126,27 +115,43 @@ class PpeAssembler {
         }
         diag += c * w;
         if (row_of_[j] >= 0) {
-          cols[pos] = row_of_[j];
-          vals[pos] = static_cast<double>(-c * w);
-          ++pos;
+          cols[count] = row_of_[j];
+          vals[count] = static_cast<double>(-c * w);
+          ++count;
         } else {
           anchored_[static_cast<std::size_t>(r)] = 1;  // a Dirichlet neighbour
         }
       }
-      cols[diag_pos] = static_cast<int>(r);
-      vals[diag_pos] = static_cast<double>(diag);
-      for (int p = outer[r] + 1; p < outer[r + 1]; ++p) {
+      cols[0] = static_cast<int>(r);
+      vals[0] = static_cast<double>(diag);
+      for (int p = 1; p < count; ++p) {
         const int col = cols[p];
         const double val = vals[p];
         int q = p - 1;
-        for (; q >= outer[r] && cols[q] > col; --q) {
+        for (; q >= 0 && cols[q] > col; --q) {
           cols[q + 1] = cols[q];
           vals[q + 1] = vals[q];
         }
         cols[q + 1] = col;
         vals[q + 1] = val;
       }
+      outer[r + 1] = count;
       b[r] = static_cast<double>(ghost - source[i]);
+    }
+    outer[0] = 0;
+    for (std::int64_t r = 0; r < rows; ++r) outer[r + 1] += outer[r];
+    a.resizeNonZeros(outer[rows]);
+
+    // Pass 2: the rows copied into place.
+    int* const cols = a.innerIndexPtr();
+    double* const vals = a.valuePtr();
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t r = 0; r < rows; ++r) {
+      const Offset first = list.begin(static_cast<std::size_t>(particle_of_row_[static_cast<std::size_t>(r)])) +
+                           static_cast<Offset>(r);
+      const int count = outer[r + 1] - outer[r];
+      std::copy_n(scratch_cols_.data() + first, count, cols + outer[r]);
+      std::copy_n(scratch_vals_.data() + first, count, vals + outer[r]);
     }
   }
 
@@ -177,6 +182,8 @@ class PpeAssembler {
   std::vector<Index> particle_of_row_;
   std::vector<std::uint8_t> anchored_, left_out_;
   std::vector<int> front_;
+  std::vector<int> scratch_cols_;  // pass 1's rows, before they are packed
+  std::vector<double> scratch_vals_;
   std::vector<Index> enclosed_;
   std::size_t enclosed_fluid_ = 0;
 };
