@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "mpsfsi/core/cell_list_search.hpp"
 #include "mpsfsi/core/filter_neighbors.hpp"
@@ -144,6 +145,36 @@ TEST_CASE("fluid.ppe: Neumann ghosts make a hydrostatic field solve the rows of 
   // order where the dummies are left out.
   CHECK(worst_ghost <= 1e-10 * rho_g);
   CHECK(worst_wall_plain > 0.1 * rho_g);
+}
+
+TEST_CASE("fluid.ppe: a row is sorted by column with its values, whatever its runs") {
+  // Rows as the assembly produces them: ascending runs of columns, each entry's value tied to
+  // its column. Lengths either side of the insertion sort's limit, one to many runs.
+  detail::RowSortBuffer buffer;
+  buffer.reserve_row(200);
+  for (const int length : {0, 1, 5, 63, 64, 65, 120, 200}) {
+    for (const int runs : {1, 2, 3, 7, 27, 200}) {
+      std::vector<int> cols(static_cast<std::size_t>(length));
+      for (int p = 0; p < length; ++p) {
+        const int run = p % std::max(1, runs);  // entry p goes to run p mod runs ...
+        const int within = p / std::max(1, runs);
+        cols[static_cast<std::size_t>(p)] = 1000 * within + run;  // ... distinct columns
+      }
+      // Concatenate the runs, each ascending, runs in descending order of their first column.
+      std::vector<int> row;
+      for (int run = std::max(1, runs) - 1; run >= 0; --run)
+        for (int p = 0; p < length; ++p)
+          if (p % std::max(1, runs) == run) row.push_back(cols[static_cast<std::size_t>(p)]);
+      std::vector<double> vals(row.size());
+      for (std::size_t p = 0; p < row.size(); ++p) vals[p] = 0.5 * row[p];
+      detail::sort_row_by_column(row.data(), vals.data(), length, buffer);
+      CAPTURE(length);
+      CAPTURE(runs);
+      std::sort(cols.begin(), cols.end());
+      CHECK(row == cols);
+      for (std::size_t p = 0; p < row.size(); ++p) CHECK(vals[p] == 0.5 * row[p]);
+    }
+  }
 }
 
 }  // TEST_SUITE
