@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
@@ -33,11 +34,10 @@ struct RowSortBuffer {
 };
 
 // Sorts one CSR row (cols, vals: m entries) by column: a natural merge sort, or an insertion
-// sort for short rows. A row comes from
-// a neighbour-list row, which lists the neighbours cell by cell, so it is made of ascending
-// runs; merging them pairwise moves each entry log2(runs) times, where an insertion sort moves
-// it past every earlier entry with a larger column (three quarters of the 3D assembly's time
-// with 120-entry rows).
+// sort for short rows. A row comes from a neighbour-list row, which lists the neighbours cell by
+// cell, so it is made of ascending runs; merging them pairwise moves each entry log2(runs)
+// times, where an insertion sort moves it past every earlier entry with a larger column (on
+// 120-entry 3D rows the assembly then takes 1.4 times as long; docs/performance.md).
 inline void sort_row_by_column(int* cols, double* vals, int m, RowSortBuffer& buffer) {
   if (m < 64) {  // 2D rows (about 30 entries): the insertion sort measured faster there
     for (int p = 1; p < m; ++p) {
@@ -111,7 +111,8 @@ inline void sort_row_by_column(int* cols, double* vals, int m, RowSortBuffer& bu
 // enclosed region with fluid in it is otherwise left for the caller to report
 // (enclosed_fluid()).
 // Assembled straight into CSR: one counting pass, a prefix sum, one filling pass, OpenMP over
-// rows, each row sorted by column (a merge of its ascending runs). The arrays keep their capacity from one step to the next.
+// rows, each row sorted by column (sort_row_by_column). The arrays keep their capacity from one
+// step to the next.
 template <class Weight, int Dim, class Scalar>
 class PpeAssembler {
  public:
