@@ -45,8 +45,8 @@
 namespace mpsfsi {
 inline namespace MPSFSI_ABI {
 
-inline constexpr std::uint32_t checkpoint_format_version = 3;
-inline constexpr std::uint32_t oldest_readable_checkpoint_format = 3;
+inline constexpr std::uint32_t checkpoint_format_version = 4;
+inline constexpr std::uint32_t oldest_readable_checkpoint_format = 4;
 
 namespace detail {
 

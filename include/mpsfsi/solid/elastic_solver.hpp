@@ -158,6 +158,13 @@ class ElasticSolver {
     if (p_.bond_viscosity > 0 && !model_adds_viscosity) viscosity_.initialize(bonds_);
     contact_.initialize(n, p_.contact_distance(), p_.contact_stiffness(),
                         2 * p_.contact_damping_ratio * std::sqrt(p_.contact_stiffness() * 0.5 * mass_));
+    if (p_.contact_friction > 0) {
+      if constexpr (detail::has_contact_friction<contact_type>::value)
+        contact_.set_friction(p_.contact_friction);
+      else
+        detail::throw_invalid("ElasticSolver", "contact_friction is set, but the contact policy has no friction "
+                                               "(no set_friction(mu))");
+    }
     constraint_.assign(n, Constraint::free);
     prescribed_velocity_.assign(n, vec_type::Zero());
     external_.assign(n, vec_type::Zero());

@@ -131,6 +131,12 @@ template <class C>
 struct has_contact_active_pairs<C, std::void_t<decltype(std::size_t(std::declval<const C&>().active_pairs()))>>
     : std::true_type {};
 
+// Optional: `void set_friction(double mu)`, Coulomb friction (SolidParameters::contact_friction).
+template <class C, class = void>
+struct has_contact_friction : std::false_type {};
+template <class C>
+struct has_contact_friction<C, std::void_t<decltype(std::declval<C&>().set_friction(0.5))>> : std::true_type {};
+
 }  // namespace detail
 
 template <class M, int Dim>

@@ -74,6 +74,8 @@ struct SolidParameters {
   // zeta of the contact dashpot (contact.hpp). Off by default: at 0.2 the two halves of the
   // bending study's case 04 stayed joined 5 ms after the crack, at 0 they separate.
   Scalar contact_damping_ratio = Scalar(0);
+  // Coulomb friction coefficient mu of the contact (contact.hpp): 0, frictionless, by default.
+  Scalar contact_friction = Scalar(0);
   // Brittle failure (used only when the failure policy is not NoFailure): tensile strength
   // sigma_f (required then) and the crack's half-width Cw l0 along the plane (eq 35), with
   // Cw = crack_width_ratio, 0 selecting sqrt(d)/2; l0/2 <= Cw l0 <= re.
@@ -147,6 +149,7 @@ struct SolidParameters {
     need(std::isfinite(contact_distance_ratio) && contact_distance_ratio > 0, "contact_distance_ratio must be positive");
     need(std::isfinite(contact_stiffness_ratio) && contact_stiffness_ratio >= 0, "contact_stiffness_ratio must be >= 0");
     need(std::isfinite(contact_damping_ratio) && contact_damping_ratio >= 0, "contact_damping_ratio must be >= 0");
+    need(std::isfinite(contact_friction) && contact_friction >= 0, "contact_friction (mu) must be >= 0");
     need(blowup_speed_factor > 0, "blowup_speed_factor must be positive");
     need(tensile_strength > 0 && !std::isnan(tensile_strength), "tensile_strength (sigma_f) must be positive");
     need(crack_width_ratio == 0 || (crack_half_width() >= l0 / 2 && crack_half_width() <= re()),
