@@ -156,15 +156,15 @@ TEST_CASE("fluid.ppe: a row is sorted by column with its values, whatever its ru
     for (const int runs : {1, 2, 3, 7, 27, 200}) {
       std::vector<int> cols(static_cast<std::size_t>(length));
       for (int p = 0; p < length; ++p) {
-        const int run = p % std::max(1, runs);  // entry p goes to run p mod runs ...
-        const int within = p / std::max(1, runs);
+        const int run = p % runs;  // entry p goes to run p mod runs ...
+        const int within = p / runs;
         cols[static_cast<std::size_t>(p)] = 1000 * within + run;  // ... distinct columns
       }
       // Concatenate the runs, each ascending, runs in descending order of their first column.
       std::vector<int> row;
-      for (int run = std::max(1, runs) - 1; run >= 0; --run)
+      for (int run = runs - 1; run >= 0; --run)
         for (int p = 0; p < length; ++p)
-          if (p % std::max(1, runs) == run) row.push_back(cols[static_cast<std::size_t>(p)]);
+          if (p % runs == run) row.push_back(cols[static_cast<std::size_t>(p)]);
       std::vector<double> vals(row.size());
       for (std::size_t p = 0; p < row.size(); ++p) vals[p] = 0.5 * row[p];
       detail::sort_row_by_column(row.data(), vals.data(), length, buffer);
