@@ -184,13 +184,9 @@ class PenaltyContact {
     if (!search_ || search_->radius() != distance_ + skin_) search_.emplace(distance_ + skin_);
     search_->build(x);
     search_->self_query(x, all_);
-    if (friction_ > 0) {
-      std::swap(previous_, list_);
-      filter_neighbors(all_, [&](std::size_t i, Index j) { return !bonds.bonded(i, j); }, list_);
-      carry_anchors();
-    } else {
-      filter_neighbors(all_, [&](std::size_t i, Index j) { return !bonds.bonded(i, j); }, list_);
-    }
+    if (friction_ > 0) std::swap(previous_, list_);  // the old rows, for carry_anchors()
+    filter_neighbors(all_, [&](std::size_t i, Index j) { return !bonds.bonded(i, j); }, list_);
+    if (friction_ > 0) carry_anchors();
     built_at_ = x;
     cuts_at_build_ = bonds.num_cut();
     ++rebuilds_;
