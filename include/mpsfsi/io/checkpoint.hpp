@@ -45,8 +45,8 @@
 namespace mpsfsi {
 inline namespace MPSFSI_ABI {
 
-inline constexpr std::uint32_t checkpoint_format_version = 4;
-inline constexpr std::uint32_t oldest_readable_checkpoint_format = 4;
+inline constexpr std::uint32_t checkpoint_format_version = 5;
+inline constexpr std::uint32_t oldest_readable_checkpoint_format = 5;
 
 namespace detail {
 

@@ -16,6 +16,7 @@
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
+#include "mpsfsi/solid/coulomb_friction.hpp"
 
 namespace mpsfsi {
 inline namespace MPSFSI_ABI {
@@ -201,16 +202,7 @@ class PenaltyContact {
       anchor_[slot] = r;
       held_[slot] = 1;
     }
-    const vec_type offset = r - anchor_[slot];
-    vec_type stretch = offset - offset.dot(e) * e;
-    const Scalar cap = friction_ * std::max(normal, Scalar(0));
-    const Scalar spring = stiffness_ * stretch.norm();
-    if (spring > cap) {
-      stretch *= cap / spring;
-      anchor_[slot] = r - stretch;
-    }
-    stretch_[slot] = stretch;
-    return -stiffness_ * stretch;
+    return coulomb_friction(r, e, normal, friction_, stiffness_, anchor_[slot], stretch_[slot]);
   }
 
   // After a rebuild: each pair that was held keeps its anchor (looked up in its old row), every

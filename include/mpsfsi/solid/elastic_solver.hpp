@@ -31,6 +31,7 @@
 #include "mpsfsi/solid/hwang_model.hpp"
 #include "mpsfsi/solid/policy_checks.hpp"
 #include "mpsfsi/solid/principal_stress.hpp"
+#include "mpsfsi/solid/rigid_obstacle.hpp"
 #include "mpsfsi/solid/solid_parameters.hpp"
 
 namespace mpsfsi {
@@ -156,8 +157,7 @@ class ElasticSolver {
     if constexpr (can_fail) fracture_.initialize(set_, p_, context_.volume);
     model_.initialize(bonds_, context_);
     if (p_.bond_viscosity > 0 && !model_adds_viscosity) viscosity_.initialize(bonds_);
-    contact_.initialize(n, p_.contact_distance(), p_.contact_stiffness(),
-                        2 * p_.contact_damping_ratio * std::sqrt(p_.contact_stiffness() * 0.5 * mass_));
+    contact_.initialize(n, p_.contact_distance(), p_.contact_stiffness(), contact_damping());
     if (p_.contact_friction > 0) {
       if constexpr (detail::has_contact_friction<contact_type>::value)
         contact_.set_friction(p_.contact_friction);
@@ -204,6 +204,29 @@ class ElasticSolver {
 
   Constraint constraint(std::size_t i) const { return constraint_[i]; }
 
+  // Gives the solver a rigid body its particles touch (a structure, a moving wall, a floor;
+  // solid/rigid_obstacle.hpp) with the particle pairs' contact law, from now on; the solver moves
+  // it by its velocity at every step. Returns its index for obstacle(). A checkpoint holds the
+  // obstacles' motion and friction anchors: add the same obstacles before reading one.
+  std::size_t add_obstacle(RigidObstacle<Dim, double> obstacle) {
+    obstacle.attach(set_.size(), 0.5 * p_.contact_distance(), p_.contact_stiffness(), contact_damping(),
+                    p_.contact_friction);
+    obstacles_.push_back(std::move(obstacle));
+    compute_forces(set_.positions(), set_.velocities(), force_);
+    stresses_current_ = false;
+    return obstacles_.size() - 1;
+  }
+  std::size_t num_obstacles() const { return obstacles_.size(); }
+  // Obstacle k: its load() and displacement(); set_velocity() between steps.
+  RigidObstacle<Dim, double>& obstacle(std::size_t k) {
+    check_obstacle(k);
+    return obstacles_[k];
+  }
+  const RigidObstacle<Dim, double>& obstacle(std::size_t k) const {
+    check_obstacle(k);
+    return obstacles_[k];
+  }
+
   // External force per particle (N, per unit thickness in 2D); kept until changed. The FSI load.
   VecArray<Dim, double>& external_force() { return external_; }
 
@@ -243,6 +266,7 @@ class ElasticSolver {
     }
     model_.kick(0.5 * dt);
     model_.drift(dt);
+    for (auto& obstacle : obstacles_) obstacle.move(dt);
     // With fracture the stresses are read after every step: the stress model computes them with
     // the forces when it can, into stress_next_, which becomes the stress field when the step is
     // committed.
@@ -255,8 +279,13 @@ class ElasticSolver {
       v_next_[i] = constrained(i, decay * (v_next_[i] + 0.5 * dt * a));
     }
     // Throws, before anything is committed, if the step blows up.
-    blowup_check_.check(x_next_, v_next_, set_.ids(), p_.blowup_speed_factor * p_.p_wave_speed(), step_count_ + 1,
-                        time_ + dt);
+    try {
+      blowup_check_.check(x_next_, v_next_, set_.ids(), p_.blowup_speed_factor * p_.p_wave_speed(), step_count_ + 1,
+                          time_ + dt);
+    } catch (...) {
+      for (auto& obstacle : obstacles_) obstacle.move(-dt);
+      throw;
+    }
     model_.kick(0.5 * dt);
     set_.positions().swap(x_next_);
     set_.velocities().swap(v_next_);
@@ -376,9 +405,11 @@ class ElasticSolver {
     for (const auto& v : set_.velocities()) e += 0.5 * mass_ * v.squaredNorm();
     return e;
   }
-  // Elastic energy of the stress model plus the contact springs.
+  // Elastic energy of the stress model plus the contact springs (particle pairs and obstacles).
   double strain_energy() const {
-    return model_.strain_energy(set_.positions(), bonds_) + contact_.energy(set_.positions(), bonds_);
+    double e = model_.strain_energy(set_.positions(), bonds_) + contact_.energy(set_.positions(), bonds_);
+    for (const auto& obstacle : obstacles_) e += obstacle.energy(set_.positions());
+    return e;
   }
   double gravity_energy() const {
     double e = 0;
@@ -423,6 +454,13 @@ class ElasticSolver {
     bonds_.checkpoint_state(a);
     model_.checkpoint_state(a);
     contact_.checkpoint_state(a);
+    std::uint64_t obstacles = obstacles_.size();
+    a.value(obstacles);  // overwritten when reading
+    if (obstacles != obstacles_.size())
+      detail::throw_invalid("ElasticSolver::checkpoint_state", "the checkpoint has " + std::to_string(obstacles) +
+                                                                   " obstacles; this solver has " +
+                                                                   std::to_string(obstacles_.size()));
+    for (auto& obstacle : obstacles_) obstacle.checkpoint_state(a);
     a.array(constraint_);
     a.array(prescribed_velocity_);
     a.array(external_);
@@ -435,7 +473,9 @@ class ElasticSolver {
   void checkpoint_restored() {
     const std::size_t n = set_.size();
     if (reference_.size() != n || constraint_.size() != n || prescribed_velocity_.size() != n ||
-        external_.size() != n || force_.size() != n)
+        external_.size() != n || force_.size() != n ||
+        std::any_of(obstacles_.begin(), obstacles_.end(),
+                    [n](const auto& o) { return o.checkpoint_particle_count() != n; }))
       detail::throw_invalid("ElasticSolver", "the checkpoint's arrays do not match its particle count");
     model_.checkpoint_restored(bonds_);
     if (p_.bond_viscosity > 0 && !model_adds_viscosity) viscosity_.initialize(bonds_);
@@ -444,6 +484,17 @@ class ElasticSolver {
 
  private:
   double choose_dt() const { return p_.dt > 0 ? p_.dt : p_.stable_dt(); }
+
+  // The contact dashpot c = 2 zeta sqrt(k m/2) (docs/theory.md, section 3.5).
+  double contact_damping() const {
+    return 2 * p_.contact_damping_ratio * std::sqrt(p_.contact_stiffness() * 0.5 * mass_);
+  }
+
+  void check_obstacle(std::size_t k) const {
+    if (k >= obstacles_.size())
+      detail::throw_invalid("ElasticSolver::obstacle", "obstacle " + std::to_string(k) + " out of range (" +
+                                                           std::to_string(obstacles_.size()) + ")");
+  }
 
   void check_index(std::size_t i, const char* what) const {
     if (i >= set_.size())
@@ -485,6 +536,7 @@ class ElasticSolver {
         const bool with_stresses = stresses && detail::has_model_forces_with_stresses<stress_model_type, Dim>::value;
         model_.internal_forces(x, v, bonds_, force, with_stresses ? stresses : nullptr, viscosity);
         contact_.add_forces(x, v, bonds_, force);
+        for (auto& obstacle : obstacles_) obstacle.add_forces(x, v, force);
         return with_stresses;
       }
     }
@@ -497,6 +549,7 @@ class ElasticSolver {
     }
     if (!with_stresses) model_.internal_forces(x, bonds_, force);
     contact_.add_forces(x, v, bonds_, force);
+    for (auto& obstacle : obstacles_) obstacle.add_forces(x, v, force);
     if (p_.bond_viscosity > 0) viscosity_.add(bonds_, x, v, viscosity, force);
     return with_stresses;
   }
@@ -516,7 +569,11 @@ class ElasticSolver {
         p_.crack_half_width(), p_.re(), time_, p_.crack_side};
     const bool cut = fracture_.apply(
         state, [this](std::size_t i) { return constraint_[i] == Constraint::prescribed; },
-        [&](std::size_t i) { return contact_.touching(x, i); }, touched_, scratch_);
+        [&](std::size_t i) {
+          return contact_.touching(x, i) ||
+                 std::any_of(obstacles_.begin(), obstacles_.end(), [&](const auto& o) { return o.touching(x[i]); });
+        },
+        touched_, scratch_);
     if (cut) bonds_changed();
     return cut;
   }
@@ -540,6 +597,7 @@ class ElasticSolver {
   SolidModelContext<Dim, double> context_;
   stress_model_type model_;
   contact_type contact_;
+  std::vector<RigidObstacle<Dim, double>> obstacles_;
   // Whether the stress model adds the bond viscosity in its force pass (then viscosity_ stays empty).
   static constexpr bool model_adds_viscosity = detail::has_model_forces_with_viscosity<stress_model_type, Dim>::value;
   BondViscosity<Dim> viscosity_;
