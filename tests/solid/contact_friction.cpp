@@ -10,6 +10,7 @@
 #include "mpsfsi/io/checkpoint.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
+#include "support/motion_fit.hpp"
 
 using namespace mpsfsi;
 
@@ -76,16 +77,8 @@ SlopeRun slide_on_slope(double slope, double mu, double duration) {
       x.push_back(centre());
     }
   }
-  // Least-squares fit x = c0 + c1 t + c2 t^2 / 2.
-  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    const Eigen::Vector3d row(1, t[k], 0.5 * t[k] * t[k]);
-    normal += row * row.transpose();
-    rhs += row * x[k];
-  }
   SlopeRun run;
-  run.acceleration = normal.ldlt().solve(rhs)[2];
+  run.acceleration = test::fitted_acceleration(t, x);
   run.travel = centre() - x.front();
   return run;
 }

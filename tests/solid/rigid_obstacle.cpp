@@ -12,6 +12,7 @@
 #include "mpsfsi/scenes/solid_block.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 #include "mpsfsi/solid/rigid_obstacle.hpp"
+#include "support/motion_fit.hpp"
 
 using namespace mpsfsi;
 
@@ -73,14 +74,7 @@ SlopeRun slide_on_rigid_slope(double slope, double mu) {
       x.push_back(mean_x(s));
     }
   }
-  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    const Eigen::Vector3d row(1, t[k], 0.5 * t[k] * t[k]);
-    normal += row * row.transpose();
-    rhs += row * x[k];
-  }
-  return {normal.ldlt().solve(rhs)[2], mean_x(s) - x.front()};
+  return {test::fitted_acceleration(t, x), mean_x(s) - x.front()};
 }
 
 // A free block (no gravity) moving at `speed` along x into a wedge whose face rises at angle
