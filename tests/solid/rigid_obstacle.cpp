@@ -107,9 +107,9 @@ TEST_SUITE("solid") {
 // tan(alpha) <= mu and otherwise slides with a = g (sin(alpha) - mu cos(alpha)). The floor is
 // flat, so no bump slows the block: frictionless, it slides at g sin(alpha) to the fit's
 // precision (0.1 %). Sliding with friction, the block rings (steady sliding of an elastic body
-// with Coulomb friction is not stable), and for moments some of its bottom particles stick: the
-// friction coefficient its motion implies, (g sin(alpha) - a) / (g cos(alpha)), is mu to 1 %
-// (docs/validation/solid.md, "Friction on a slope", gives the measured values).
+// with Coulomb friction is not stable), and the friction coefficient its motion implies,
+// (g sin(alpha) - a) / (g cos(alpha)), is mu to 1 % (0.16 % measured: docs/validation/solid.md,
+// "On a rigid slope").
 TEST_CASE("solid.obstacle: a block on a rigid slope sticks below tan(alpha) = mu and slides above it at g (sin - mu cos)") {
   const double g = 9.81;
   const double mu = 0.4;
