@@ -209,23 +209,16 @@ class ElasticSolver {
   // it by its velocity at every step. Returns its index for obstacle(). A checkpoint holds the
   // obstacles' motion and friction anchors: add the same obstacles before reading one.
   std::size_t add_obstacle(RigidObstacle<Dim, double> obstacle) {
-    obstacle.attach(set_.size(), 0.5 * p_.contact_distance(), p_.contact_stiffness(), contact_damping(),
-                    p_.contact_friction);
-    obstacles_.push_back(std::move(obstacle));
+    const std::size_t k = obstacles_.add(std::move(obstacle), set_.size(), 0.5 * p_.contact_distance(),
+                                         p_.contact_stiffness(), contact_damping(), p_.contact_friction);
     compute_forces(set_.positions(), set_.velocities(), force_);
     stresses_current_ = false;
-    return obstacles_.size() - 1;
+    return k;
   }
   std::size_t num_obstacles() const { return obstacles_.size(); }
   // Obstacle k: its load() and displacement(); set_velocity() between steps.
-  RigidObstacle<Dim, double>& obstacle(std::size_t k) {
-    check_obstacle(k);
-    return obstacles_[k];
-  }
-  const RigidObstacle<Dim, double>& obstacle(std::size_t k) const {
-    check_obstacle(k);
-    return obstacles_[k];
-  }
+  RigidObstacle<Dim, double>& obstacle(std::size_t k) { return obstacles_.at(k); }
+  const RigidObstacle<Dim, double>& obstacle(std::size_t k) const { return obstacles_.at(k); }
 
   // External force per particle (N, per unit thickness in 2D); kept until changed. The FSI load.
   VecArray<Dim, double>& external_force() { return external_; }
@@ -266,7 +259,7 @@ class ElasticSolver {
     }
     model_.kick(0.5 * dt);
     model_.drift(dt);
-    for (auto& obstacle : obstacles_) obstacle.move(dt);
+    obstacles_.move(dt);
     // With fracture the stresses are read after every step: the stress model computes them with
     // the forces when it can, into stress_next_, which becomes the stress field when the step is
     // committed.
@@ -283,7 +276,7 @@ class ElasticSolver {
       blowup_check_.check(x_next_, v_next_, set_.ids(), p_.blowup_speed_factor * p_.p_wave_speed(), step_count_ + 1,
                           time_ + dt);
     } catch (...) {
-      for (auto& obstacle : obstacles_) obstacle.move(-dt);
+      obstacles_.move(-dt);
       throw;
     }
     model_.kick(0.5 * dt);
@@ -407,9 +400,8 @@ class ElasticSolver {
   }
   // Elastic energy of the stress model plus the contact springs (particle pairs and obstacles).
   double strain_energy() const {
-    double e = model_.strain_energy(set_.positions(), bonds_) + contact_.energy(set_.positions(), bonds_);
-    for (const auto& obstacle : obstacles_) e += obstacle.energy(set_.positions());
-    return e;
+    return model_.strain_energy(set_.positions(), bonds_) + contact_.energy(set_.positions(), bonds_) +
+           obstacles_.energy(set_.positions());
   }
   double gravity_energy() const {
     double e = 0;
@@ -454,13 +446,7 @@ class ElasticSolver {
     bonds_.checkpoint_state(a);
     model_.checkpoint_state(a);
     contact_.checkpoint_state(a);
-    std::uint64_t obstacles = obstacles_.size();
-    a.value(obstacles);  // overwritten when reading
-    if (obstacles != obstacles_.size())
-      detail::throw_invalid("ElasticSolver::checkpoint_state", "the checkpoint has " + std::to_string(obstacles) +
-                                                                   " obstacles; this solver has " +
-                                                                   std::to_string(obstacles_.size()));
-    for (auto& obstacle : obstacles_) obstacle.checkpoint_state(a);
+    obstacles_.checkpoint_state(a);
     a.array(constraint_);
     a.array(prescribed_velocity_);
     a.array(external_);
@@ -473,9 +459,7 @@ class ElasticSolver {
   void checkpoint_restored() {
     const std::size_t n = set_.size();
     if (reference_.size() != n || constraint_.size() != n || prescribed_velocity_.size() != n ||
-        external_.size() != n || force_.size() != n ||
-        std::any_of(obstacles_.begin(), obstacles_.end(),
-                    [n](const auto& o) { return o.checkpoint_particle_count() != n; }))
+        external_.size() != n || force_.size() != n || !obstacles_.sized_for(n))
       detail::throw_invalid("ElasticSolver", "the checkpoint's arrays do not match its particle count");
     model_.checkpoint_restored(bonds_);
     if (p_.bond_viscosity > 0 && !model_adds_viscosity) viscosity_.initialize(bonds_);
@@ -488,12 +472,6 @@ class ElasticSolver {
   // The contact dashpot c = 2 zeta sqrt(k m/2) (docs/theory.md, section 3.5).
   double contact_damping() const {
     return 2 * p_.contact_damping_ratio * std::sqrt(p_.contact_stiffness() * 0.5 * mass_);
-  }
-
-  void check_obstacle(std::size_t k) const {
-    if (k >= obstacles_.size())
-      detail::throw_invalid("ElasticSolver::obstacle", "obstacle " + std::to_string(k) + " out of range (" +
-                                                           std::to_string(obstacles_.size()) + ")");
   }
 
   void check_index(std::size_t i, const char* what) const {
@@ -536,7 +514,7 @@ class ElasticSolver {
         const bool with_stresses = stresses && detail::has_model_forces_with_stresses<stress_model_type, Dim>::value;
         model_.internal_forces(x, v, bonds_, force, with_stresses ? stresses : nullptr, viscosity);
         contact_.add_forces(x, v, bonds_, force);
-        for (auto& obstacle : obstacles_) obstacle.add_forces(x, v, force);
+        obstacles_.add_forces(x, v, force);
         return with_stresses;
       }
     }
@@ -549,7 +527,7 @@ class ElasticSolver {
     }
     if (!with_stresses) model_.internal_forces(x, bonds_, force);
     contact_.add_forces(x, v, bonds_, force);
-    for (auto& obstacle : obstacles_) obstacle.add_forces(x, v, force);
+    obstacles_.add_forces(x, v, force);
     if (p_.bond_viscosity > 0) viscosity_.add(bonds_, x, v, viscosity, force);
     return with_stresses;
   }
@@ -570,8 +548,7 @@ class ElasticSolver {
     const bool cut = fracture_.apply(
         state, [this](std::size_t i) { return constraint_[i] == Constraint::prescribed; },
         [&](std::size_t i) {
-          return contact_.touching(x, i) ||
-                 std::any_of(obstacles_.begin(), obstacles_.end(), [&](const auto& o) { return o.touching(x[i]); });
+          return contact_.touching(x, i) || obstacles_.touching(x[i]);
         },
         touched_, scratch_);
     if (cut) bonds_changed();
@@ -597,7 +574,7 @@ class ElasticSolver {
   SolidModelContext<Dim, double> context_;
   stress_model_type model_;
   contact_type contact_;
-  std::vector<RigidObstacle<Dim, double>> obstacles_;
+  RigidObstacles<Dim, double> obstacles_;
   // Whether the stress model adds the bond viscosity in its force pass (then viscosity_ stays empty).
   static constexpr bool model_adds_viscosity = detail::has_model_forces_with_viscosity<stress_model_type, Dim>::value;
   BondViscosity<Dim> viscosity_;

@@ -236,5 +236,73 @@ class RigidObstacle {
   std::size_t touching_ = 0;
 };
 
+// The rigid bodies a solver's particles touch: adds them with the solver's contact law, moves
+// them, adds their forces, and holds them in checkpoints (ElasticSolver's obstacles).
+template <int Dim, class Scalar = double>
+class RigidObstacles {
+ public:
+  using obstacle_type = RigidObstacle<Dim, Scalar>;
+  using vec_type = typename obstacle_type::vec_type;
+
+  // The body with the contact law of n particles (RigidObstacle::attach); returns its index.
+  std::size_t add(obstacle_type obstacle, std::size_t n, Scalar distance, Scalar stiffness, Scalar damping,
+                  Scalar solver_friction) {
+    obstacle.attach(n, distance, stiffness, damping, solver_friction);
+    bodies_.push_back(std::move(obstacle));
+    return bodies_.size() - 1;
+  }
+  std::size_t size() const { return bodies_.size(); }
+  // Body k; throws InvalidInput if there is none.
+  obstacle_type& at(std::size_t k) {
+    check(k);
+    return bodies_[k];
+  }
+  const obstacle_type& at(std::size_t k) const {
+    check(k);
+    return bodies_[k];
+  }
+
+  void move(Scalar dt) {
+    for (auto& body : bodies_) body.move(dt);
+  }
+  void add_forces(const VecArray<Dim, Scalar>& x, const VecArray<Dim, Scalar>& v, VecArray<Dim, Scalar>& force) {
+    for (auto& body : bodies_) body.add_forces(x, v, force);
+  }
+  bool touching(const vec_type& x) const {
+    return std::any_of(bodies_.begin(), bodies_.end(), [&](const auto& body) { return body.touching(x); });
+  }
+  Scalar energy(const VecArray<Dim, Scalar>& x) const {
+    Scalar total = 0;
+    for (const auto& body : bodies_) total += body.energy(x);
+    return total;
+  }
+
+  // The number of bodies, then each body's state; reading throws InvalidInput if the checkpoint
+  // holds a different number of bodies than were added.
+  template <class Archive>
+  void checkpoint_state(Archive& a) {
+    std::uint64_t count = bodies_.size();
+    a.value(count);  // overwritten when reading
+    if (count != bodies_.size())
+      detail::throw_invalid("RigidObstacles", "the checkpoint has " + std::to_string(count) +
+                                                  " obstacles; this solver has " + std::to_string(bodies_.size()));
+    for (auto& body : bodies_) body.checkpoint_state(a);
+  }
+  // Whether every body's per-particle state is sized for n particles (after reading a checkpoint).
+  bool sized_for(std::size_t n) const {
+    return std::all_of(bodies_.begin(), bodies_.end(),
+                       [n](const auto& body) { return body.checkpoint_particle_count() == n; });
+  }
+
+ private:
+  void check(std::size_t k) const {
+    if (k >= bodies_.size())
+      detail::throw_invalid("RigidObstacles::at", "obstacle " + std::to_string(k) + " out of range (" +
+                                                      std::to_string(bodies_.size()) + ")");
+  }
+
+  std::vector<obstacle_type> bodies_;
+};
+
 }  // namespace MPSFSI_ABI
 }  // namespace mpsfsi
