@@ -205,6 +205,41 @@ TEST_CASE_TEMPLATE("fracture.crack_plane: under pure bending the criterion reads
     }
 }
 
+// A face that carries an external force is read at the particle centres (failure_stress.hpp:
+// point loads leave spikes that a fit extrapolated to the surface would read), unless the force
+// is declared a distributed traction (ElasticSolver::mark_distributed_load): then it is read on the
+// surface as a free face is. sigma_f 1 % below the surface stress of pure bending, above the
+// centres' 5/6 of it; a small upward force on every particle of the bottom (tensile) face, which
+// moves nothing measurably in one step.
+TEST_CASE_TEMPLATE(
+    "fracture.crack_plane: a face under a distributed load is read at the surface, under loads at the centres", T,
+    std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  PureBending<Dim> bending;
+  auto params = bending.params;
+  params.tensile_strength = bending.surface_stress() / 1.01;
+  for (const bool distributed : {false, true}) {
+    ElasticSolver<Dim, Brittle<Dim>> s(bending.block, params);
+    bending.impose(s);
+    for (std::size_t i = 0; i < bending.block.size(); ++i)
+      if (bending.block.positions()[i][1] < bending.l0) {
+        s.external_force()[i] = 1e-3 * Vec<Dim>::UnitY();
+        if (distributed) s.mark_distributed_load(i);
+      }
+    s.step();
+    CAPTURE(distributed);
+    if (distributed) {
+      REQUIRE(s.cut_bonds() > 0);
+      CHECK(s.reference_positions()[s.failure_log().front().particle][1] < bending.l0);
+    } else {
+      CHECK(s.cut_bonds() == 0);
+    }
+  }
+  ElasticSolver<Dim, Brittle<Dim>> s(bending.block, params);
+  CHECK_THROWS_WITH_AS(s.mark_distributed_load(bending.block.size()),
+                       doctest::Contains("mark_distributed_load: particle"), InvalidInput);
+}
+
 // MaxPrincipalStress's upper bound lets the check skip sigma_1 where a particle cannot fail, and
 // the `failure_stress` field gets it later (FractureProcess::refresh_output). Against the same
 // criterion without the bound, on pure bending with sigma_f between the centre and the surface

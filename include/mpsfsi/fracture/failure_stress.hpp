@@ -45,12 +45,15 @@ inline namespace MPSFSI_ABI {
 //   cases. Crack faces are not read outside: at a crack tip the field is singular, and a fit
 //   extrapolated into the crack reads noise (it branched the crack of the bending study at
 //   mid-height). Nor are loaded particles (`loaded(i)`; ElasticSolver: in contact, or having
-//   carried an external force such as the FSI load at any step so far): a fit extrapolated to a
+//   carried an external force such as the FSI load at any step so far, unless the solver was
+//   told that it is a distributed traction, mark_distributed_load): a fit extrapolated to a
 //   face under point loads reads their spikes (it cracked the top beside the indenter), and the
 //   spikes stay in the field after the load is gone. A droplet's impact loads the ice beam's top
 //   for one fluid step and then leaves it at zero pressure: read outside from then on, that face
 //   fails one solid step later and the failures run along the whole beam (docs/validation/fsi.md).
-//   The read-out is meant for faces that stay traction-free.
+//   The read-out is meant for faces that stay traction-free or carry a traction smooth along
+//   them (the foundation under ice on water: its bottom fibre, read at the centres, reads
+//   1 - l0/h of the surface stress before averaging, less after; docs/validation/fracture.md).
 template <int Dim>
 class FailureStressReadout {
  public:

@@ -97,14 +97,17 @@ class FractureProcess {
              std::vector<std::size_t>& scratch) {
     const auto& x = s.set.positions();
     const std::size_t n = s.set.size();
-    // An external force marks its particle as loaded from then on (failure_stress.hpp: why).
+    // An external force marks its particle as loaded from then on (failure_stress.hpp: why),
+    // unless it was declared a distributed traction.
     if (s.fit) {
-      carried_external_.resize(n, 0);
+      carried_external_.resize(n, kNoExternal);
       MPSFSI_OMP(parallel for schedule(static))
-      for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i)
-        if (!s.external[static_cast<std::size_t>(i)].isZero(0.0)) carried_external_[static_cast<std::size_t>(i)] = 1;
+      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
+        if (carried_external_[i] == kNoExternal && !s.external[i].isZero(0.0)) carried_external_[i] = kPointLoad;
+      }
     }
-    const auto loaded = [&](std::size_t i) { return touching(i) || carried_external_[i] != 0; };
+    const auto loaded = [&](std::size_t i) { return touching(i) || carried_external_[i] == kPointLoad; };
     const bool slab = s.crack_side == CrackSide::slab;
     if (slab && readout_.cut_out_marks() != n)  // after a checkpoint was read: from the record
       for (const auto& e : log_) readout_.mark_cut_out(e.particle, n);
@@ -202,8 +205,18 @@ class FractureProcess {
     deferred_ = false;
   }
 
+  // Particle i's external force is a distributed traction (water pressure, a foundation): smooth
+  // along its face, so the read-out extrapolates the face to its surface as it does a free one
+  // (failure_stress.hpp), from now on, also if it was marked as loaded before. Contact still
+  // marks it as loaded.
+  void mark_distributed_load(std::size_t i, std::size_t n) {
+    carried_external_.resize(n, kNoExternal);
+    carried_external_[i] = kDistributedLoad;
+  }
+
   // Checkpoints (io/checkpoint.hpp): the read-out's first-read data, the particles that have
-  // carried an external force, and the record. The strengths are fields of the particle set.
+  // carried an external force (and those whose external force is distributed), and the record.
+  // The strengths are fields of the particle set.
   template <class Archive>
   void checkpoint_state(Archive& a) {
     deferred_ = false;  // the field is complete in the archive (refresh_output came first)
@@ -230,7 +243,10 @@ class FractureProcess {
   Failure failure_;
   FieldHandle<double> strength_, failure_stress_;
   FailureStressReadout<Dim> readout_;
-  std::vector<std::uint8_t> carried_external_;  // has carried an external force (surface read-out)
+  // Per particle, for the surface read-out: whether it has carried an external force, and of
+  // which kind.
+  static constexpr std::uint8_t kNoExternal = 0, kPointLoad = 1, kDistributedLoad = 2;
+  std::vector<std::uint8_t> carried_external_;
   std::vector<Failing> failing_;
   // Whether the last check left some particles' principal() out, and which.
   bool deferred_ = false;

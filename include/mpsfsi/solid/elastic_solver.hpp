@@ -223,6 +223,15 @@ class ElasticSolver {
   // External force per particle (N, per unit thickness in 2D); kept until changed. The FSI load.
   VecArray<Dim, double>& external_force() { return external_; }
 
+  // Particle i's external force is a distributed traction, smooth along its face (the water
+  // under floating ice, a foundation), not a concentrated load: the failure read-out takes its
+  // face's stress on the surface as it does on a free face, instead of at the particle centres
+  // as it does under loads (failure_stress.hpp: why). From now on; kept in checkpoints.
+  void mark_distributed_load(std::size_t i) {
+    check_index(i, "mark_distributed_load");
+    if constexpr (can_fail) fracture_.mark_distributed_load(i, set_.size());
+  }
+
   // --- Time stepping ---
 
   // One step of the automatic or fixed dt.
