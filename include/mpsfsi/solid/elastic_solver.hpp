@@ -29,6 +29,7 @@
 #include "mpsfsi/solid/failure_slot.hpp"
 #include "mpsfsi/solid/fragments.hpp"
 #include "mpsfsi/solid/hwang_model.hpp"
+#include "mpsfsi/solid/particle_constraints.hpp"
 #include "mpsfsi/solid/policy_checks.hpp"
 #include "mpsfsi/solid/principal_stress.hpp"
 #include "mpsfsi/solid/rigid_obstacle.hpp"
@@ -63,13 +64,6 @@ struct has_deformation_fit : std::false_type {};
 template <class Model>
 struct has_deformation_fit<Model, std::void_t<decltype(std::declval<const Model&>().fit())>> : std::true_type {};
 }  // namespace detail
-
-// How a particle's motion is constrained.
-enum class Constraint : std::int32_t {
-  free = 0,
-  prescribed = 1,  // moves with a velocity the user sets (zero: clamped)
-  support = 2,     // no velocity along a given direction (a simple support / roller)
-};
 
 // Elastic solid on fixed initial bonds (total Lagrangian, docs/theory.md, section 3), integrated
 // explicitly with velocity Verlet (kick-drift-kick, symplectic):
@@ -165,8 +159,7 @@ class ElasticSolver {
         detail::throw_invalid("ElasticSolver", "contact_friction is set, but the contact policy has no friction "
                                                "(no set_friction(mu))");
     }
-    constraint_.assign(n, Constraint::free);
-    prescribed_velocity_.assign(n, vec_type::Zero());
+    constraints_.reset(n);
     external_.assign(n, vec_type::Zero());
     compute_forces(set_.positions(), set_.velocities(), force_);
   }
@@ -176,14 +169,16 @@ class ElasticSolver {
   // Fixes particle i where it is (prescribed velocity zero).
   void clamp(std::size_t i) {
     check_index(i, "clamp");
-    set_prescribed(i, vec_type::Zero());
+    constraints_.prescribe(i, vec_type::Zero());
+    constraint_changed(i);
   }
 
   // Particle i moves with velocity v from now on (an indenter, a moving clamp).
   void prescribe_velocity(std::size_t i, const vec_type& v) {
     check_index(i, "prescribe_velocity");
     if (!v.allFinite()) detail::throw_invalid("ElasticSolver::prescribe_velocity", "velocity is not finite");
-    set_prescribed(i, v);
+    constraints_.prescribe(i, v);
+    constraint_changed(i);
   }
 
   // Particle i cannot move along `normal` (a simple support: only a reaction along normal).
@@ -191,18 +186,17 @@ class ElasticSolver {
     check_index(i, "support");
     if (!(normal.norm() > 0) || !normal.allFinite())
       detail::throw_invalid("ElasticSolver::support", "the support normal must be a finite non-zero vector");
-    set_constraint(i, Constraint::support);
-    prescribed_velocity_[i] = normal.normalized();  // the unit normal, for supports
-    auto& v = set_.velocities()[i];
-    v -= v.dot(prescribed_velocity_[i]) * prescribed_velocity_[i];
+    constraints_.support(i, normal);
+    constraint_changed(i);
   }
 
   void release(std::size_t i) {
     check_index(i, "release");
-    set_constraint(i, Constraint::free);
+    constraints_.release(i);
+    constraint_changed(i);
   }
 
-  Constraint constraint(std::size_t i) const { return constraint_[i]; }
+  Constraint constraint(std::size_t i) const { return constraints_.at(i); }
 
   // Gives the solver a rigid body its particles touch (a structure, a moving wall, a floor;
   // solid/rigid_obstacle.hpp) with the particle pairs' contact law, from now on; the solver moves
@@ -229,7 +223,7 @@ class ElasticSolver {
   // as it does under loads (failure_stress.hpp: why). From now on; kept in checkpoints.
   void mark_distributed_load(std::size_t i) {
     check_index(i, "mark_distributed_load");
-    if constexpr (can_fail) fracture_.mark_distributed_load(i, set_.size());
+    fracture_.mark_distributed_load(i, set_.size());
   }
 
   // --- Time stepping ---
@@ -263,7 +257,7 @@ class ElasticSolver {
       // The acceleration of the current state, with the external force as it is now (a coupler
       // changes it between steps).
       const vec_type a = (force_[i] + external_[i]) / mass_ + p_.gravity;
-      v_next_[i] = constrained(i, decay * v[i] + 0.5 * dt * a);
+      v_next_[i] = constraints_.constrained(i, decay * v[i] + 0.5 * dt * a);
       x_next_[i] = x[i] + dt * v_next_[i];
     }
     model_.kick(0.5 * dt);
@@ -278,7 +272,7 @@ class ElasticSolver {
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       const vec_type a = inv_m * (force_next_[i] + external_[i]) + p_.gravity;  // at the new positions
-      v_next_[i] = constrained(i, decay * (v_next_[i] + 0.5 * dt * a));
+      v_next_[i] = constraints_.constrained(i, decay * (v_next_[i] + 0.5 * dt * a));
     }
     // Throws, before anything is committed, if the step blows up.
     try {
@@ -394,12 +388,7 @@ class ElasticSolver {
   // or a supported one off its normal (zero for free particles). The sum over an indenter's
   // particles, negated, is the load it applies.
   vec_type reaction(std::size_t i) const {
-    const vec_type applied = force_[i] + external_[i] + mass_ * p_.gravity;
-    switch (constraint_[i]) {
-      case Constraint::prescribed: return -applied;
-      case Constraint::support: return -applied.dot(prescribed_velocity_[i]) * prescribed_velocity_[i];
-      default: return vec_type::Zero();
-    }
+    return constraints_.reaction(i, force_[i] + external_[i] + mass_ * p_.gravity);
   }
 
   double kinetic_energy() const {
@@ -456,8 +445,7 @@ class ElasticSolver {
     model_.checkpoint_state(a);
     contact_.checkpoint_state(a);
     obstacles_.checkpoint_state(a);
-    a.array(constraint_);
-    a.array(prescribed_velocity_);
+    constraints_.checkpoint_state(a);
     a.array(external_);
     a.array(force_);
     a.value(time_);
@@ -467,7 +455,7 @@ class ElasticSolver {
   }
   void checkpoint_restored() {
     const std::size_t n = set_.size();
-    if (reference_.size() != n || constraint_.size() != n || prescribed_velocity_.size() != n ||
+    if (reference_.size() != n || !constraints_.sized_for(n) ||
         external_.size() != n || force_.size() != n || !obstacles_.sized_for(n))
       detail::throw_invalid("ElasticSolver", "the checkpoint's arrays do not match its particle count");
     model_.checkpoint_restored(bonds_);
@@ -489,23 +477,10 @@ class ElasticSolver {
                             "particle " + std::to_string(i) + " out of range (" + std::to_string(set_.size()) + ")");
   }
 
-  void set_prescribed(std::size_t i, const vec_type& v) {
-    set_constraint(i, Constraint::prescribed);
-    prescribed_velocity_[i] = v;
-    set_.velocities()[i] = v;
-  }
-
-  void set_constraint(std::size_t i, Constraint c) {
-    constraint_[i] = c;
-    set_.field(constraint_field_)[i] = static_cast<std::int32_t>(c);
-  }
-
-  vec_type constrained(std::size_t i, const vec_type& v) const {
-    switch (constraint_[i]) {
-      case Constraint::prescribed: return prescribed_velocity_[i];
-      case Constraint::support: return v - v.dot(prescribed_velocity_[i]) * prescribed_velocity_[i];
-      default: return v;
-    }
+  // Particle i's velocity and `constraint` output field follow its new constraint at once.
+  void constraint_changed(std::size_t i) {
+    set_.velocities()[i] = constraints_.constrained(i, set_.velocities()[i]);
+    set_.field(constraint_field_)[i] = static_cast<std::int32_t>(constraints_.at(i));
   }
 
   // The forces on the particles at positions x, all but the external one and gravity:
@@ -555,7 +530,7 @@ class ElasticSolver {
         {p_.l0, context_.n0, Weight::value(p_.l0, p_.re()), context_.lame, p_.average_failure_stress},
         p_.crack_half_width(), p_.re(), time_, p_.crack_side};
     const bool cut = fracture_.apply(
-        state, [this](std::size_t i) { return constraint_[i] == Constraint::prescribed; },
+        state, [this](std::size_t i) { return constraints_.at(i) == Constraint::prescribed; },
         [&](std::size_t i) {
           return contact_.touching(x, i) || obstacles_.touching(x[i]);
         },
@@ -593,8 +568,7 @@ class ElasticSolver {
   FieldHandle<vec_type> displacement_;
   FieldHandle<mat_type> stress_field_;
   FieldHandle<double> damage_, principal_;
-  std::vector<Constraint> constraint_;
-  VecArray<Dim, double> prescribed_velocity_;  // the velocity, or the unit normal of a support
+  ParticleConstraints<Dim> constraints_;
   VecArray<Dim, double> external_, force_;
   VecArray<Dim, double> x_next_, v_next_, force_next_;
   MatArray<Dim, double> stress_next_;  // the stresses of x_next_, when the stress model gives them

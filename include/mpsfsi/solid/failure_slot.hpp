@@ -59,6 +59,8 @@ class NoFractureProcess {
   }
   template <class... Inputs>
   void refresh_output(const ParticleSet<Dim>&, const Inputs&...) const {}
+  // Nothing is read out, so no load needs a kind.
+  void mark_distributed_load(std::size_t, std::size_t) {}
   template <class Archive>
   void checkpoint_state(Archive&) {}
 
