@@ -38,6 +38,12 @@ struct ModelBlock {
 
 const LameConstants<double> kLame{1.5e6, 1.0e6};
 
+template <int Dim>
+Mat<Dim> test_rotation() {
+  if constexpr (Dim == 2) return Eigen::Rotation2D<double>(0.6).toRotationMatrix();
+  else return Eigen::AngleAxisd(0.6, Vec<3>(1, 2, 3).normalized()).toRotationMatrix();
+}
+
 // The force loop against a plain sum over directed bonds, t_ij = V P_i g_ij + 2c beta_ij delta_ij
 // added to i and subtracted from j, with the model's own fit, on 1, 2 and 3 threads; the loop
 // that also gives the stresses gives the same forces, the stresses of the fit's F to round-off,
@@ -220,6 +226,80 @@ TEST_CASE("solid.corrected_total_lagrangian: forces are the negative gradient of
     }
   }
   CHECK(worst < 1e-5 * scale);  // central differences: truncation ~h^2, round-off ~1e-16 U / h
+}
+
+// Cutting can leave a particle bonded along one line (a slab cut beside it) or, in 3D, in one
+// plane; its F is then completed across the bonds (DeformationFit::completed). A rigid rotation
+// of the body must still give no force and no stress (with F = I across the bonds it read as
+// shear mu theta there), and the forces must stay the exact negative gradient of the energy.
+TEST_CASE_TEMPLATE("solid.corrected_total_lagrangian: a particle left with a line or a plane of bonds: rigid rotation "
+                   "gives no stress, the forces are the energy's gradient",
+                   T, std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  const double l0 = 0.01;
+  ModelBlock<Dim, CorrectedTotalLagrangian<Dim>> block(l0, 9, 5, kLame, 4);
+  const auto& x0 = block.set.positions();
+  const auto at = [&](const Vec<Dim>& site) {
+    for (std::size_t i = 0; i < x0.size(); ++i)
+      if ((x0[i] - (site + Vec<Dim>::Constant(0.5)) * l0).norm() < 1e-9) return i;
+    FAIL("no particle at the lattice site");
+    return std::size_t{0};
+  };
+  // `line` keeps its bonds along x; in 3D `plane` (4 spacings away, no common bond) those in z = const.
+  Vec<Dim> line_site = Vec<Dim>::Constant(2), plane_site = Vec<Dim>::Constant(2);
+  plane_site[0] = 6;
+  const std::size_t line = at(line_site), plane = Dim == 3 ? at(plane_site) : line;
+  std::vector<std::size_t> touched;
+  for (const std::size_t i : {line, plane})
+    for (Offset b = block.bonds.begin(i); b < block.bonds.end(i); ++b) {
+      const Vec<Dim> r0 = block.bonds.r0(b);
+      const bool keep = i == plane && Dim == 3 ? std::abs(r0[Dim - 1]) < 1e-9 * l0
+                                               : r0.tail(Dim - 1).norm() < 1e-9 * l0;
+      if (!keep && block.bonds.cut(b)) {
+        touched.push_back(i);
+        touched.push_back(static_cast<std::size_t>(block.bonds.neighbor(b)));
+      }
+    }
+  block.model.bonds_changed(block.bonds, touched);
+  REQUIRE(block.model.fit().has_free_direction(line));
+  REQUIRE(block.model.fit().has_free_direction(plane));
+
+  const Mat<Dim> rotation = test_rotation<Dim>();
+  VecArray<Dim> x = x0;
+  for (auto& p : x) p = rotation * p + Vec<Dim>::Constant(0.2);
+  VecArray<Dim> f;
+  block.model.internal_forces(x, block.bonds, f);
+  MatArray<Dim> sigma;
+  block.model.stresses(x, block.bonds, sigma);
+  double worst_f = 0, worst_s = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    worst_f = std::max(worst_f, f[i].norm());
+    worst_s = std::max(worst_s, sigma[i].norm());
+  }
+  CHECK(worst_f < 1e-10 * kLame.mu * std::pow(l0, Dim - 1));
+  CHECK(worst_s < 1e-10 * kLame.mu);
+
+  // Rotated and disturbed: central differences of the energy at the cut particles and a bond
+  // partner of each.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-0.01 * l0, 0.01 * l0);
+  for (auto& p : x)
+    for (int a = 0; a < Dim; ++a) p[a] += u(rng);
+  block.model.internal_forces(x, block.bonds, f);
+  const double h = 1e-7;
+  double worst = 0, scale = 0;
+  for (const std::size_t i : {line, line + 1, plane, plane + 1}) {
+    for (int a = 0; a < Dim; ++a) {
+      VecArray<Dim> xp = x, xm = x;
+      xp[i][a] += h;
+      xm[i][a] -= h;
+      const double numeric =
+          -(block.model.strain_energy(xp, block.bonds) - block.model.strain_energy(xm, block.bonds)) / (2 * h);
+      worst = std::max(worst, std::abs(numeric - f[i][a]));
+      scale = std::max(scale, std::abs(f[i][a]));
+    }
+  }
+  CHECK(worst < 1e-5 * scale);  // central differences, as in the intact block's test above
 }
 
 // The force loop works from r0, beta and each particle's M_i^+ (detail::PackedBonds), a group of

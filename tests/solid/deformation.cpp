@@ -26,6 +26,38 @@ struct Block {
   }
 };
 
+// A particle whose intact bonds lie on one line (a chain) or, in 3D, in one plane (a sheet) fits F
+// only along them; across, F turns with the bonds (DeformationFit::completed). Under a rotation R
+// times a stretch G within the bonds' span, the fitted F equals R G on the span, to round-off, and
+// the Green strain and det F are G's: nothing across the bonds. (Across a line in 3D, F is the
+// least rotation taking the line to its new direction, not R: a twist about a line of bonds
+// is not seen by them.)
+template <int Dim>
+Mat<Dim> test_rotation() {
+  if constexpr (Dim == 2) return Eigen::Rotation2D<double>(0.6).toRotationMatrix();
+  else return Eigen::AngleAxisd(0.6, Vec<3>(1, 2, 3).normalized()).toRotationMatrix();
+}
+
+template <int Dim>
+void check_turns_with_bonds(const ParticleSet<Dim>& set, const Mat<Dim>& stretch, const Mat<Dim>& span) {
+  BondList<Dim> bonds;
+  bonds.template build<KoshizukaWeight>(set.positions(), std::vector<std::int32_t>(set.size(), 0), 0.021);
+  DeformationFit<Dim> fit;
+  fit.build(bonds, 0.01);
+  const Mat<Dim> motion = test_rotation<Dim>() * stretch;
+  VecArray<Dim> x(set.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = motion * set.positions()[i] + Vec<Dim>::Constant(0.3);
+  const Mat<Dim> strain = 0.5 * (stretch.transpose() * stretch - Mat<Dim>::Identity());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    CHECK(fit.has_free_direction(i));
+    const Mat<Dim> f = fit.gradient(x, bonds, i);
+    CHECK(((f - motion) * span).cwiseAbs().maxCoeff() < 1e-12);
+    CHECK((0.5 * (f.transpose() * f - Mat<Dim>::Identity()) - strain).cwiseAbs().maxCoeff() < 1e-12);
+    CHECK(f.determinant() == doctest::Approx(stretch.determinant()).epsilon(1e-12));
+    CHECK((fit.affine(x, bonds, i).template leftCols<Dim>() - f).cwiseAbs().maxCoeff() < 1e-12);
+  }
+}
+
 }  // namespace
 
 TEST_SUITE("solid") {
@@ -88,19 +120,25 @@ TEST_CASE_TEMPLATE("solid.deformation: gradient_at reads the fitted field's grad
   CHECK(worst < 1e-10);
 }
 
-TEST_CASE("solid.deformation: a particle whose bonds span one direction stays undeformed across it") {
-  ParticleSet<2> chain;
-  for (int k = 0; k < 4; ++k) chain.add(Vec<2>(0.01 * k, 0));
-  BondList<2> bonds;
-  bonds.build<KoshizukaWeight>(chain.positions(), std::vector<std::int32_t>(4, 0), 0.021);
-  DeformationFit<2> fit;
-  fit.build(bonds, 0.01);
-  VecArray<2> x = chain.positions();
-  for (auto& p : x) p[0] *= 1.1;  // stretch along the chain
-  const Mat<2> f = fit.gradient(x, bonds, 1);
-  CHECK(f(0, 0) == doctest::Approx(1.1).epsilon(1e-12));
-  CHECK(f(1, 1) == doctest::Approx(1.0).epsilon(1e-12));
-  CHECK(f.allFinite());
+TEST_CASE_TEMPLATE("solid.deformation: across a line of bonds F turns with them, so a rotation reads no strain", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  ParticleSet<Dim> chain;
+  for (int k = 0; k < 4; ++k) chain.add(Vec<Dim>::UnitX() * (0.01 * k));
+  Mat<Dim> stretch = Mat<Dim>::Identity();
+  stretch(0, 0) = 1.1;  // along the chain
+  Mat<Dim> span = Mat<Dim>::Zero();
+  span(0, 0) = 1;
+  check_turns_with_bonds<Dim>(chain, stretch, span);
+}
+
+TEST_CASE("solid.deformation: across a plane of bonds F turns with them, so a rotation reads no strain") {
+  ParticleSet<3> sheet;
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) sheet.add(Vec<3>(0.01 * a, 0.01 * b, 0));
+  Mat<3> stretch = Mat<3>::Identity();
+  stretch.topLeftCorner<2, 2>() << 1.05, 0.02, -0.01, 0.97;  // in the sheet's plane
+  check_turns_with_bonds<3>(sheet, stretch, Vec<3>(1, 1, 0).asDiagonal());
 }
 
 // Without the weak-direction floor the l0 = 1 mm bending beam shatters because of this configuration

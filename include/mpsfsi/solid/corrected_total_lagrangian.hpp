@@ -70,7 +70,10 @@ class CorrectedTotalLagrangian {
   void checkpoint_state(Archive& a) {
     fit_.checkpoint_state(a);
   }
-  void checkpoint_restored(const BondList<Dim, Scalar>& bonds) { packed_.build(fit_, bonds); }
+  void checkpoint_restored(const BondList<Dim, Scalar>& bonds) {
+    fit_.restore_resolved_directions(bonds);
+    packed_.build(fit_, bonds);
+  }
 
   // Refits the particles whose bonds were cut.
   void bonds_changed(const BondList<Dim, Scalar>& bonds, const std::vector<std::size_t>& particles) {
@@ -246,6 +249,16 @@ class CorrectedTotalLagrangian {
                 if (c != e) u[a][e] += bsum[a][c] * m_ec;
               }
             }
+        }
+        // Particles with a direction no bond resolves: F completed there (DeformationFit::completed).
+        for (std::size_t l = 0; l < present; ++l) {
+          if (!fit_.has_free_direction(i0 + l)) continue;
+          mat_type f;
+          for (int a = 0; a < Dim; ++a)
+            for (int b = 0; b < Dim; ++b) f(a, b) = (a == b ? Scalar(1) : Scalar(0)) + u[a][b][l];
+          f = fit_.completed(f, i0 + l);
+          for (int a = 0; a < Dim; ++a)
+            for (int b = 0; b < Dim; ++b) u[a][b][l] = f(a, b) - (a == b ? Scalar(1) : Scalar(0));
         }
         // Per lane: F = I + U[:, :Dim], E = (F^T F - I)/2, S = lambda tr(E) I + 2 mu E, and
         // V P = V F S (detail::green_strain, svk_stress, written out lane-wise).

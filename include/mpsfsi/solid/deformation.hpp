@@ -41,8 +41,8 @@ struct SolidModelContext {
 // M_i = sum_j beta_ij phi phi^T. A particle whose neighbourhood cutting has thinned (in some
 // direction less than a quarter of the weight of its intact neighbourhood's strongest) uses the
 // linear fit with those directions' weight raised to that quarter (kWeakDirectionFloor): it
-// reads them softly, and a direction with no bond at all not at all (F = I there, so a chip
-// carries no stress).
+// reads them softly. A direction with no bond at all turns with the bonded ones (completed()),
+// and a chip with no bond keeps F = I (it carries no stress).
 template <int Dim, class Scalar = double>
 class DeformationFit {
  public:
@@ -65,6 +65,8 @@ class DeformationFit {
     inverse_moment_.resize(n);
     gradient_sum_.resize(n);
     reference_moment_.resize(n);
+    resolved_.assign(n, Dim);
+    axis_.assign(n, vec_type::Zero());
     MPSFSI_OMP(parallel for schedule(dynamic, 64))
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
@@ -84,6 +86,7 @@ class DeformationFit {
     // or at a fragment's corner a particle may not have them; it then falls back to the linear
     // (Khayyer-Gotoh) fit with its weakly resolved directions read softly (kWeakDirectionFloor).
     const auto linear = linear_moment(bonds, i);
+    set_resolved_directions(linear, i);
     Eigen::Matrix<Scalar, width, width> pinv = Eigen::Matrix<Scalar, width, width>::Zero();
     if (linear.eigenvalues().minCoeff() < kWeakDirectionFloor * reference_moment_[i] ||
         !pseudo_inverse<width>(m, pinv, kQuadraticConditionLimit)) {
@@ -117,6 +120,7 @@ class DeformationFit {
       a.noalias() += (x[static_cast<std::size_t>(nb[k])] - xi - r0[k]) * coeff_[k].transpose();
     }
     a.template leftCols<Dim>() += mat_type::Identity();
+    if (has_free_direction(i)) a.template leftCols<Dim>() = completed(a.template leftCols<Dim>(), i);
     return a;
   }
 
@@ -130,7 +134,7 @@ class DeformationFit {
       const auto k = static_cast<std::size_t>(b);
       f.noalias() += (x[static_cast<std::size_t>(nb[k])] - xi - r0[k]) * coeff_[k].template head<Dim>().transpose();
     }
-    return f + mat_type::Identity();
+    return completed(f + mat_type::Identity(), i);
   }
 
   // Deformation gradient of the fitted map a = A_i at reference offset r from particle i: the
@@ -184,6 +188,50 @@ class DeformationFit {
   const moment_type& inverse_moment(std::size_t i) const { return inverse_moment_[i]; }
   const vec_type& gradient_sum(std::size_t i) const { return gradient_sum_[i]; }
 
+  // Whether particle i has a direction that no intact bond resolves (then completed() applies).
+  bool has_free_direction(std::size_t i) const { return resolved_[i] > 0 && resolved_[i] < Dim; }
+
+  // F of particle i with the directions no intact bond resolves turned with the resolved ones, so
+  // that a rigid rotation reads as one and the strain lies in the span of the bonds only
+  // (docs/theory.md, section 3.3). A line of bonds along a: F a = s is fitted, the rest of F is the
+  // rotation taking a to s/|s|; a plane of bonds with normal n (3D): F n is the unit normal of the
+  // turned plane, F t1 x F t2 / |F t1 x F t2|. In both C = F^T F keeps the span's block and has
+  // C n = n across it, so E depends only on F restricted to the span, every g_ij lies in the span,
+  // and P = F S in the force formula stays the exact gradient of the strain energy.
+  mat_type completed(const mat_type& f, std::size_t i) const {
+    if (!has_free_direction(i)) return f;
+    const vec_type& axis = axis_[i];
+    if (resolved_[i] == 1) {
+      const vec_type stretched = f * axis;
+      const Scalar length = stretched.norm();
+      if (!(length > 0)) return f;
+      return stretched * axis.transpose() +
+             rotation_onto(axis, stretched / length) * (mat_type::Identity() - axis * axis.transpose());
+    }
+    if constexpr (Dim == 3) {
+      const vec_type t1 = axis.unitOrthogonal();
+      const vec_type t2 = axis.cross(t1);  // t1 x t2 = axis
+      const vec_type normal = (f * t1).cross(f * t2);
+      const Scalar area = normal.norm();
+      if (!(area > 0)) return f;
+      return f + (normal / area - f * axis) * axis.transpose();
+    }
+    return f;
+  }
+
+  // Recomputes which directions each particle's intact bonds resolve (after a checkpoint is read:
+  // the fit's arrays are stored, these follow from the bonds).
+  void restore_resolved_directions(const BondList<Dim, Scalar>& bonds) {
+    const std::size_t n = bonds.num_particles();
+    resolved_.assign(n, Dim);
+    axis_.assign(n, vec_type::Zero());
+    MPSFSI_OMP(parallel for schedule(dynamic, 64))
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      set_resolved_directions(linear_moment(bonds, i), i);
+    }
+  }
+
  private:
   // Smallest eigenvalue / largest accepted for the quadratic fit (at re = 2.1 l0 a full lattice
   // neighbourhood has 0.2, a flat free surface's 8 bonds 0.0033, a corner's 5 bonds 0.0044).
@@ -200,9 +248,44 @@ class DeformationFit {
   // such a direction counts in proportion to the weight it has: no bond's coefficient is more than
   // 1/floor times its value in the intact neighbourhood. Every particle of an intact lattice is
   // above it (the weakest direction anywhere, at a corner, is 0.35 of a full neighbourhood's in 2D
-  // and 0.29 in 3D at re = 2.1 l0, and more of the corner's own strongest), and directions without
-  // any bond keep F = I (a chip carries no stress).
+  // and 0.29 in 3D at re = 2.1 l0, and more of the corner's own strongest); directions without any
+  // bond are completed from the bonded ones instead (completed()).
   static constexpr Scalar kWeakDirectionFloor = Scalar(0.25);
+
+  // The number of directions particle i's intact bonds resolve (the rank of its linear moment
+  // matrix), with the line of bonds (rank 1) or the normal of their plane (rank 2 in 3D) as axis_.
+  void set_resolved_directions(const Eigen::SelfAdjointEigenSolver<mat_type>& linear, std::size_t i) {
+    const auto& values = linear.eigenvalues();  // ascending
+    // Zero up to the round-off of sums of order reference_moment_ (a cut bond leaves nothing).
+    const Scalar zero = Scalar(1e-10) * reference_moment_[i];
+    int rank = 0;
+    for (int k = 0; k < Dim; ++k) rank += values[k] > zero ? 1 : 0;
+    resolved_[i] = static_cast<std::uint8_t>(rank);
+    axis_[i].setZero();
+    if (rank == 1) axis_[i] = linear.eigenvectors().col(Dim - 1);
+    if (Dim == 3 && rank == 2) axis_[i] = linear.eigenvectors().col(0);
+  }
+
+  // The least rotation taking unit vector a to unit vector b: about a x b, or through pi about a
+  // direction normal to a when b = -a.
+  static mat_type rotation_onto(const vec_type& a, const vec_type& b) {
+    const Scalar c = a.dot(b);
+    if constexpr (Dim == 2) {
+      const Scalar s = a[0] * b[1] - a[1] * b[0];
+      mat_type r;
+      r << c, -s, s, c;
+      return r;
+    } else {
+      if (c < Scalar(-1) + Scalar(1e-12)) {
+        const vec_type p = a.unitOrthogonal();
+        return Scalar(2) * p * p.transpose() - mat_type::Identity();
+      }
+      const vec_type v = a.cross(b);
+      mat_type k;
+      k << 0, -v[2], v[1], v[2], 0, -v[0], -v[1], v[0], 0;
+      return mat_type::Identity() + k + k * k / (1 + c);  // Rodrigues' formula
+    }
+  }
 
   // Eigen-decomposition of particle i's linear moment matrix sum_j beta_ij r0_ij r0_ij^T.
   static Eigen::SelfAdjointEigenSolver<mat_type> linear_moment(const BondList<Dim, Scalar>& bonds, std::size_t i) {
@@ -236,6 +319,8 @@ class DeformationFit {
   std::vector<basis_type> coeff_;
   std::vector<moment_type, Eigen::aligned_allocator<moment_type>> inverse_moment_;
   VecArray<Dim, Scalar> gradient_sum_;
+  std::vector<std::uint8_t> resolved_;  // directions the intact bonds resolve, 0 to Dim
+  VecArray<Dim, Scalar> axis_;            // the line of bonds (1 resolved) or the plane's normal (2 of 3)
 };
 
 namespace detail {

@@ -65,7 +65,7 @@ class HwangModel {
     a.array(spin_);
     a.array(torque_);
   }
-  void checkpoint_restored(const BondList<Dim, Scalar>&) {}
+  void checkpoint_restored(const BondList<Dim, Scalar>& bonds) { fit_.restore_resolved_directions(bonds); }
 
   void bonds_changed(const BondList<Dim, Scalar>& bonds, const std::vector<std::size_t>& particles) {
     for (const std::size_t i : particles) {
