@@ -136,7 +136,7 @@ struct Result {
   double time_at_peak = 0, first_failure = -1, end_time = 0;
   double flexural_strain = 0;     // 6 h dd / L^2 with the simulated deflection
   double final_load_fraction = 1; // load at the end / peak load
-  bool broken = false;            // the beam is in two pieces (intact-bond components)
+  bool broken = false;            // the beam is in two pieces (detail::material_pieces)
   // Diagnostics of a beam that is still one piece: intact bonds stretched beyond 5 % (none in an
   // unbroken beam, whose strain stays below 0.5 %), and whether it is in two pieces without them.
   std::size_t overstretched_bonds = 0;
@@ -183,6 +183,25 @@ inline std::size_t large_pieces(const mpsfsi::Fragments& f, std::size_t beam_cou
   std::size_t n = 0;
   for (std::size_t k = 0; k < beam_labels; ++k) n += f.sizes[k] > beam_count / 10 ? 1 : 0;
   return n;
+}
+
+// The beam's material as pieces: the bonds between particles that did not fail with
+// CrackSide::slab. Such a particle is cut out of the solid and becomes the crack (docs/theory.md,
+// section 5.3). Its strip keeps its bonds along the slab and to the material at the strip's ends,
+// so strips that meet (two cracks joined in the top row, say) can link the two faces while
+// carrying nothing across. `also(i, b)` may leave further bonds out.
+template <class Solver, class KeepBond>
+mpsfsi::Fragments material_pieces(const Solver& s, mpsfsi::CrackSide side, KeepBond also) {
+  std::vector<char> crack(s.particles().size(), 0);
+  if (side == mpsfsi::CrackSide::slab)
+    for (const auto& event : s.failure_log()) crack[event.particle] = 1;
+  return mpsfsi::find_fragments(s.bonds(), [&](std::size_t i, mpsfsi::Offset b) {
+    return crack[i] == 0 && crack[static_cast<std::size_t>(s.bonds().neighbor(b))] == 0 && also(i, b);
+  });
+}
+template <class Solver>
+mpsfsi::Fragments material_pieces(const Solver& s, mpsfsi::CrackSide side) {
+  return material_pieces(s, side, [](std::size_t, mpsfsi::Offset) { return true; });
 }
 
 }  // namespace detail
@@ -420,7 +439,7 @@ Result run(const IceBeamCase& c, const Options& o) {
     if (s.first_failure_time() >= 0 && load < 0.02 * st.peak_load) {
       if (st.after_peak_low < 0) st.after_peak_low = s.time();
       if (s.time() - st.after_peak_low > 5e-4 && s.step_count() % 50 == 0) {
-        if (detail::large_pieces(find_fragments(s.bonds()), beam_count) >= 2) break;
+        if (detail::large_pieces(detail::material_pieces(s, o.crack_side), beam_count) >= 2) break;
       }
     } else {
       st.after_peak_low = -1;
@@ -443,7 +462,7 @@ Result run(const IceBeamCase& c, const Options& o) {
   double last_load = 0;
   for (const auto i : indenter) last_load += s.internal_force(i)[1];
   r.final_load_fraction = last_load * scale / r.peak_load;
-  const Fragments fragments = find_fragments(s.bonds());
+  const Fragments fragments = detail::material_pieces(s, o.crack_side);
   r.broken = detail::large_pieces(fragments, beam_count) >= 2;
   constexpr double overstretched = 0.05;
   if (!r.broken) {
@@ -467,7 +486,7 @@ Result run(const IceBeamCase& c, const Options& o) {
                            double(s.bonds().intact_count(j))});
       }
     const auto keep = [&](std::size_t i, Offset b) { return detail::stretch(s, i, b) <= overstretched; };
-    r.broken_but_overstretched = detail::large_pieces(find_fragments(s.bonds(), keep), beam_count) >= 2;
+    r.broken_but_overstretched = detail::large_pieces(detail::material_pieces(s, o.crack_side, keep), beam_count) >= 2;
   }
   // The crack path: where particles failed, in the reference configuration.
   if (!s.failure_log().empty()) {

@@ -304,8 +304,8 @@ TEST_CASE("ice beam on a Winkler foundation: the first failure where and when He
   CHECK(std::abs(-r.load_at_failure[1] / scene.failure_load() - 1) <= 0.10);
 }
 
-// Not met at h/l0 = 8 (docs/validation/fracture.md, open problems): the far piece starts 5.4 %
-// beyond pi / (4 lambda), but 14 % of the particles are shed in fragments of 10 or fewer.
+// Not met at h/l0 = 8 (docs/validation/fracture.md, open problems): the crack runs through all
+// rows but the bottom one, whose particle holds the halves.
 TEST_CASE("ice beam on a Winkler foundation: breaks in two at pi / (4 lambda)" * doctest::should_fail()) {
   check_clean_break(end_load_break(), ice_scene().largest_moment_position());
 }
@@ -341,7 +341,7 @@ TEST_CASE("ice against a rigid 45 degree slope on a Winkler foundation: breaks a
   CHECK(std::abs(V / Pf - 1) <= 0.10);
 }
 
-// Not met at h/l0 = 8, as for the end load (the far piece starts 11 % beyond pi / (4 lambda)).
+// Not met at h/l0 = 8, as for the end load.
 TEST_CASE("ice against a rigid 45 degree slope on a Winkler foundation: breaks in two" * doctest::should_fail()) {
   check_clean_break(slope_break(), ice_scene().largest_moment_position());
 }
