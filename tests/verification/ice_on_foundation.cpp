@@ -218,6 +218,57 @@ const BreakResult& end_load_break() {
   return result;
 }
 
+// The end-load run with its ligament cut by hand: once the crack has stopped (0.05 s after the
+// first failure), the bottom particle of the first failure's column loses its bonds across the
+// vertical plane through it (ElasticSolver::impose_crack, normal along x), and the run goes on
+// for 0.05 s. It separates what the last cut's release does from how the ligament is read.
+struct ReleaseResult {
+  BreakResult after;
+  double cut_time = -1;
+  std::size_t failures_after_cut = 0;
+  double column = 0;               // the crack's reference x
+  double nearest_end_reached = 0;  // the smallest reference x of a particle failed after the cut
+  double reach_time = 0;           // from the cut to the first failure there
+  double step = 0;                 // the solver's time step
+};
+
+const ReleaseResult& ligament_cut_release() {
+  static const ReleaseResult result = [] {
+    const auto scene = ice_scene();
+    const double l0 = scene.thickness / 8;
+    BeamOnFoundation beam(scene, l0, true);
+    auto& s = beam.solver();
+    const auto wall = std::chrono::steady_clock::now();
+    const auto load = [&](double t) { return end_load(scene, t); };
+    while (s.time() < 2.0 && !(s.first_failure_time() >= 0 && s.time() > s.first_failure_time() + 0.05))
+      beam.run_to(s.time() + 0.01, load);
+    ReleaseResult r;
+    if (s.failure_events() == 0) return r;
+    const auto& X = s.reference_positions();
+    const double column = X[s.failure_log().front().particle][0], bottom = scene.beam_bottom(l0);
+    std::size_t ligament = X.size();
+    for (std::size_t i = 0; i < X.size(); ++i)
+      if (std::abs(X[i][0] - column) < l0 / 2 && X[i][1] < bottom + l0) ligament = i;
+    if (ligament == X.size()) return r;
+    const std::size_t before = s.failure_events();
+    r.cut_time = s.time();
+    s.impose_crack(ligament, Vec<2>(1, 0));
+    beam.run_to(r.cut_time + 0.05, load);
+    r.after = read_break(s, wall);
+    r.column = r.nearest_end_reached = column;
+    for (std::size_t k = before; k < s.failure_log().size(); ++k) {
+      const auto& e = s.failure_log()[k];
+      ++r.failures_after_cut;
+      if (X[e.particle][0] >= r.nearest_end_reached) continue;
+      r.nearest_end_reached = X[e.particle][0];
+      r.reach_time = e.time - r.cut_time;
+    }
+    r.step = s.dt();
+    return r;
+  }();
+  return result;
+}
+
 // The first breaking cycle against a sloping structure, dry: the beam on the foundation (with the
 // hydrostatic limits) and a rigid wedge whose face rises at 45 degrees, friction mu = 0.1, driven
 // into the beam's end at 5 mm/s; the beam's far end is held horizontally. The end rises
@@ -308,6 +359,22 @@ TEST_CASE("ice beam on a Winkler foundation: the first failure where and when He
 // rows but the bottom one, whose particle holds the halves.
 TEST_CASE("ice beam on a Winkler foundation: breaks in two at pi / (4 lambda)" * doctest::should_fail()) {
   check_clean_break(end_load_break(), ice_scene().largest_moment_position());
+}
+
+// Not met (docs/validation/fracture.md, open problems): once the ligament is cut, failures run
+// from the crack to the loaded end at about one particle a step, and the near piece falls apart.
+TEST_CASE("ice beam on a Winkler foundation: cut through its ligament, two pieces and nothing shed" *
+          doctest::should_fail()) {
+  const auto& r = ligament_cut_release();
+  REQUIRE(r.cut_time > 0);
+  MESSAGE("ligament cut at t = " << r.cut_time << " s: " << r.failures_after_cut
+                                 << " failures after it, reaching x = " << r.nearest_end_reached << " m "
+                                 << 1e3 * r.reach_time << " ms after it ("
+                                 << (r.column - r.nearest_end_reached) / r.reach_time << " m/s; l0 / dt = "
+                                 << ice_scene().thickness / 8 / r.step << " m/s); " << r.after.pieces
+                                 << " pieces of more than 10 particles, " << r.after.small_fragment_particles
+                                 << " particles in smaller ones");
+  check_clean_break(r.after, ice_scene().largest_moment_position());
 }
 
 // The slope bends the end up: the first failure at the bottom fibre, within 10 % of
