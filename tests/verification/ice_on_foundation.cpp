@@ -256,9 +256,9 @@ const ReleaseResult& ligament_cut_release() {
     beam.run_to(r.cut_time + 0.05, load);
     r.after = read_break(s, wall);
     r.column = r.nearest_end_reached = column;
+    r.failures_after_cut = s.failure_events() - before;
     for (std::size_t k = before; k < s.failure_log().size(); ++k) {
       const auto& e = s.failure_log()[k];
-      ++r.failures_after_cut;
       if (X[e.particle][0] >= r.nearest_end_reached) continue;
       r.nearest_end_reached = X[e.particle][0];
       r.reach_time = e.time - r.cut_time;
