@@ -250,13 +250,16 @@ class CorrectedTotalLagrangian {
               }
             }
         }
-        // Particles with a direction no bond resolves: F completed there (DeformationFit::completed).
+        // Particles that read a direction softly: F turned with their bonds (DeformationFit::objective),
+        // the fitted F kept for the stress term below.
+        mat_type fitted[lanes];
+        bool soft_group = false;
         for (std::size_t l = 0; l < present; ++l) {
-          if (!fit_.has_free_direction(i0 + l)) continue;
-          mat_type f;
+          if (!fit_.reads_softly(i0 + l)) continue;
+          soft_group = true;
           for (int a = 0; a < Dim; ++a)
-            for (int b = 0; b < Dim; ++b) f(a, b) = (a == b ? Scalar(1) : Scalar(0)) + u[a][b][l];
-          f = fit_.completed(f, i0 + l);
+            for (int b = 0; b < Dim; ++b) fitted[l](a, b) = (a == b ? Scalar(1) : Scalar(0)) + u[a][b][l];
+          const mat_type f = fit_.objective(fitted[l], i0 + l);
           for (int a = 0; a < Dim; ++a)
             for (int b = 0; b < Dim; ++b) u[a][b][l] = f(a, b) - (a == b ? Scalar(1) : Scalar(0));
         }
@@ -283,6 +286,7 @@ class CorrectedTotalLagrangian {
             vp[a][b] *= v;
           }
         if (cauchy) store_cauchy(u, vp, v, i0, present, cauchy);
+        if (soft_group) add_soft_reading_terms(u, bsum, c2, i0, present, fitted, vp);
         // W = V P [M^+]_(1..d) - 2c U, so that t_ij = beta_ij (2c du_ij + W phi_ij).
         lane_type w[Dim][width];
         for (int a = 0; a < Dim; ++a)
@@ -399,6 +403,31 @@ class CorrectedTotalLagrangian {
           fs(a, b) = vp[a][b][l] / volume;
         }
       cauchy[i0 + l] = fs * f.transpose() / f.determinant();
+    }
+  }
+
+  // What a soft particle's energy adds to the matrix conjugate to its fitted F (vp = V P). Its F is
+  // turned (F_obj) and floored, so neither is the least-squares fit that the stabilisation's
+  // derivative assumes: the stabilisation keeps a residual R = sum_j beta_ij delta_ij r0_ij^T =
+  // B - (F_obj - I) M (the quadratic part of A is zero for a linear fit), and dU_stab/dF_obj = -2c R.
+  // The turn then maps the whole of V P - 2c R back onto the fitted F through
+  // DeformationFit::objective_stress_term (docs/theory.md, section 3.3).
+  template <class Lane>
+  void add_soft_reading_terms(const Lane (&u)[Dim][width], const Lane (&bsum)[Dim][width], Scalar c2, std::size_t i0,
+                              std::size_t present, const mat_type (&fitted)[lanes], Lane (&vp)[Dim][Dim]) const {
+    for (std::size_t l = 0; l < present; ++l) {
+      if (!fit_.reads_softly(i0 + l)) continue;
+      mat_type displacement, b, pull;
+      for (int a = 0; a < Dim; ++a)
+        for (int c = 0; c < Dim; ++c) {
+          displacement(a, c) = u[a][c][l];
+          b(a, c) = bsum[a][c][l];
+          pull(a, c) = vp[a][c][l];
+        }
+      pull -= c2 * (b - displacement * fit_.moment_matrix(i0 + l));
+      pull += fit_.objective_stress_term(fitted[l], pull, i0 + l);
+      for (int a = 0; a < Dim; ++a)
+        for (int c = 0; c < Dim; ++c) vp[a][c][l] = pull(a, c);
     }
   }
 

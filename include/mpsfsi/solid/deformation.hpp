@@ -41,8 +41,9 @@ struct SolidModelContext {
 // M_i = sum_j beta_ij phi phi^T. A particle whose neighbourhood cutting has thinned (in some
 // direction less than a quarter of the weight of its intact neighbourhood's strongest) uses the
 // linear fit with those directions' weight raised to that quarter (kWeakDirectionFloor): it
-// reads them softly. A direction with no bond at all turns with the bonded ones (completed()),
-// and a chip with no bond keeps F = I (it carries no stress).
+// reads them softly, and the part of F they do not set turns with the bonded directions
+// (objective()), so that a rigid rotation reads as one. A chip with no bond keeps F = I (it
+// carries no stress).
 template <int Dim, class Scalar = double>
 class DeformationFit {
  public:
@@ -65,8 +66,7 @@ class DeformationFit {
     inverse_moment_.resize(n);
     gradient_sum_.resize(n);
     reference_moment_.resize(n);
-    resolved_.assign(n, Dim);
-    axis_.assign(n, vec_type::Zero());
+    resize_soft_reading(n);
     MPSFSI_OMP(parallel for schedule(dynamic, 64))
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
@@ -86,7 +86,7 @@ class DeformationFit {
     // or at a fragment's corner a particle may not have them; it then falls back to the linear
     // (Khayyer-Gotoh) fit with its weakly resolved directions read softly (kWeakDirectionFloor).
     const auto linear = linear_moment(bonds, i);
-    set_resolved_directions(linear, i);
+    set_soft_reading(linear, i);
     Eigen::Matrix<Scalar, width, width> pinv = Eigen::Matrix<Scalar, width, width>::Zero();
     if (linear.eigenvalues().minCoeff() < kWeakDirectionFloor * reference_moment_[i] ||
         !pseudo_inverse<width>(m, pinv, kQuadraticConditionLimit)) {
@@ -120,7 +120,7 @@ class DeformationFit {
       a.noalias() += (x[static_cast<std::size_t>(nb[k])] - xi - r0[k]) * coeff_[k].transpose();
     }
     a.template leftCols<Dim>() += mat_type::Identity();
-    if (has_free_direction(i)) a.template leftCols<Dim>() = completed(a.template leftCols<Dim>(), i);
+    if (reads_softly(i)) a.template leftCols<Dim>() = objective(a.template leftCols<Dim>(), i);
     return a;
   }
 
@@ -134,7 +134,7 @@ class DeformationFit {
       const auto k = static_cast<std::size_t>(b);
       f.noalias() += (x[static_cast<std::size_t>(nb[k])] - xi - r0[k]) * coeff_[k].template head<Dim>().transpose();
     }
-    return completed(f + mat_type::Identity(), i);
+    return objective(f + mat_type::Identity(), i);
   }
 
   // Deformation gradient of the fitted map a = A_i at reference offset r from particle i: the
@@ -188,47 +188,49 @@ class DeformationFit {
   const moment_type& inverse_moment(std::size_t i) const { return inverse_moment_[i]; }
   const vec_type& gradient_sum(std::size_t i) const { return gradient_sum_[i]; }
 
-  // Whether particle i has a direction that no intact bond resolves (then completed() applies).
+  // Whether particle i has a direction that no intact bond resolves at all.
   bool has_free_direction(std::size_t i) const { return resolved_[i] > 0 && resolved_[i] < Dim; }
+  // Whether particle i reads a direction softly (below kWeakDirectionFloor, or without bonds):
+  // then objective() turns its F.
+  bool reads_softly(std::size_t i) const { return turn_[i] != kNoTurn; }
+  // Its linear moment matrix M_i = sum_j beta_ij r0_ij r0_ij^T, as the floor last saw it.
+  mat_type moment_matrix(std::size_t i) const {
+    return moment_vectors_[i] * moment_values_[i].asDiagonal() * moment_vectors_[i].transpose();
+  }
 
-  // F of particle i with the directions no intact bond resolves turned with the resolved ones, so
-  // that a rigid rotation reads as one and the strain lies in the span of the bonds only
-  // (docs/theory.md, section 3.3). A line of bonds along a: F a = s is fitted, the rest of F is the
-  // rotation taking a to s/|s|; a plane of bonds with normal n (3D): F n is the unit normal of the
-  // turned plane, F t1 x F t2 / |F t1 x F t2|. In both C = F^T F keeps the span's block and has
-  // C n = n across it, so E depends only on F restricted to the span, every g_ij lies in the span,
-  // and P = F S in the force formula stays the exact gradient of the strain energy.
-  mat_type completed(const mat_type& f, std::size_t i) const {
-    if (!has_free_direction(i)) return f;
-    const vec_type& axis = axis_[i];
-    if (resolved_[i] == 1) {
-      const vec_type stretched = f * axis;
-      const Scalar length = stretched.norm();
-      if (!(length > 0)) return f;
-      return stretched * axis.transpose() +
-             rotation_onto(axis, stretched / length) * (mat_type::Identity() - axis * axis.transpose());
-    }
-    if constexpr (Dim == 3) {
-      const vec_type t1 = axis.unitOrthogonal();
-      const vec_type t2 = axis.cross(t1);  // t1 x t2 = axis
-      const vec_type normal = (f * t1).cross(f * t2);
-      const Scalar area = normal.norm();
-      if (!(area > 0)) return f;
-      return f + (normal / area - f * axis) * axis.transpose();
-    }
-    return f;
+  // The fitted F of a particle that reads directions softly, made objective (docs/theory.md,
+  // section 3.3, "The turned floor"). With the floored inverse M_f^-1 the fit is
+  //   F = F_b + S,  F_b = sum_j beta_ij r_ij r0_ij^T M_f^-1,  S = I - M M_f^-1,
+  // S being the share of each weak direction that the bonds do not set (zero where the weight is
+  // above the floor, one where no bond is). S does not turn with the body: a rigid rotation Q
+  // gives F_b = Q (I - S) and F = Q + (I - Q) S, a shear of about theta/2 at every thinned
+  // particle. The turned fit is F_obj = F_b + Q(F_b) S, with Q the rotation of the particle's
+  // directions as its bonds see them: in 2D (and for a line of bonds in 3D) the rotation taking the
+  // strongest direction a onto F_b a; in 3D with one weak direction n, Q n is the unit normal of
+  // the turned strong plane; with two or three, Q takes the frame (a, b, a x b) of the strongest
+  // and second directions onto the Gram-Schmidt frame of (F_b a, F_b b). F_obj = Q under any
+  // rigid rotation.
+  mat_type objective(const mat_type& f, std::size_t i) const { return turned(f, i, nullptr, nullptr); }
+
+  // What the turn adds to the stress conjugate to the fit: for a first Piola-Kirchhoff-like
+  // matrix P conjugate to F_obj, the gradient of psi(F_obj(F_b)) with respect to F_b is P + dP with
+  // dP = (dQ S / dF_b)^T : P. The force loop adds it, so that the forces stay the exact negative
+  // gradient of the energy. Zero for a particle that does not read softly.
+  mat_type objective_stress_term(const mat_type& f, const mat_type& p, std::size_t i) const {
+    mat_type dp = mat_type::Zero();
+    turned(f, i, &p, &dp);
+    return dp;
   }
 
   // Recomputes which directions each particle's intact bonds resolve (after a checkpoint is read:
   // the fit's arrays are stored, these follow from the bonds).
   void restore_resolved_directions(const BondList<Dim, Scalar>& bonds) {
     const std::size_t n = bonds.num_particles();
-    resolved_.assign(n, Dim);
-    axis_.assign(n, vec_type::Zero());
+    resize_soft_reading(n);
     MPSFSI_OMP(parallel for schedule(dynamic, 64))
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
-      set_resolved_directions(linear_moment(bonds, i), i);
+      set_soft_reading(linear_moment(bonds, i), i);
     }
   }
 
@@ -249,21 +251,119 @@ class DeformationFit {
   // 1/floor times its value in the intact neighbourhood. Every particle of an intact lattice is
   // above it (the weakest direction anywhere, at a corner, is 0.35 of a full neighbourhood's in 2D
   // and 0.29 in 3D at re = 2.1 l0, and more of the corner's own strongest); directions without any
-  // bond are completed from the bonded ones instead (completed()).
+  // bond have none to count and turn with the bonded ones (objective()).
   static constexpr Scalar kWeakDirectionFloor = Scalar(0.25);
 
-  // The number of directions particle i's intact bonds resolve (the rank of its linear moment
-  // matrix), with the line of bonds (rank 1) or the normal of their plane (rank 2 in 3D) as axis_.
-  void set_resolved_directions(const Eigen::SelfAdjointEigenSolver<mat_type>& linear, std::size_t i) {
+  // How particle i's F turns (objective()): kTurnWithAxis for 2D and for a line of bonds in 3D,
+  // kTurnWithPlane when one direction of three is weak, kTurnWithFrame when two or three are.
+  enum Turn : std::uint8_t { kNoTurn, kTurnWithAxis, kTurnWithPlane, kTurnWithFrame };
+
+  void resize_soft_reading(std::size_t n) {
+    resolved_.assign(n, Dim);
+    turn_.assign(n, kNoTurn);
+    moment_values_.assign(n, vec_type::Zero());
+    moment_vectors_.assign(n, mat_type::Identity());
+  }
+
+  // Particle i's linear moment (its eigen-decomposition), the number of directions its intact
+  // bonds resolve (its rank) and how its F turns.
+  void set_soft_reading(const Eigen::SelfAdjointEigenSolver<mat_type>& linear, std::size_t i) {
     const auto& values = linear.eigenvalues();  // ascending
+    moment_values_[i] = values;
+    moment_vectors_[i] = linear.eigenvectors();
     // Zero up to the round-off of sums of order reference_moment_ (a cut bond leaves nothing).
     const Scalar zero = Scalar(1e-10) * reference_moment_[i];
-    int rank = 0;
-    for (int k = 0; k < Dim; ++k) rank += values[k] > zero ? 1 : 0;
+    const Scalar floor = kWeakDirectionFloor * reference_moment_[i];
+    int rank = 0, weak = 0;
+    for (int k = 0; k < Dim; ++k) {
+      rank += values[k] > zero ? 1 : 0;
+      weak += values[k] < floor ? 1 : 0;
+    }
     resolved_[i] = static_cast<std::uint8_t>(rank);
-    axis_[i].setZero();
-    if (rank == 1) axis_[i] = linear.eigenvectors().col(Dim - 1);
-    if (Dim == 3 && rank == 2) axis_[i] = linear.eigenvectors().col(0);
+    if (rank == 0 || weak == 0) turn_[i] = kNoTurn;
+    else if (Dim == 2 || rank == 1) turn_[i] = kTurnWithAxis;
+    else if (weak == 1) turn_[i] = kTurnWithPlane;
+    else turn_[i] = kTurnWithFrame;
+  }
+
+  // The unset share of each eigen-direction, s_k = 1 - lambda_k / max(lambda_k, floor): S's
+  // eigenvalues (S = I - M M_f^-1).
+  vec_type soft_shares(std::size_t i) const {
+    const Scalar floor = kWeakDirectionFloor * reference_moment_[i];
+    vec_type s;
+    for (int k = 0; k < Dim; ++k) {
+      const Scalar value = std::max(moment_values_[i][k], Scalar(0));
+      s[k] = value < floor ? 1 - value / floor : Scalar(0);
+    }
+    return s;
+  }
+
+  // F_obj = F_b + Q S (objective()) and, if p is given, dp = the adjoint of F_b -> Q(F_b) S applied
+  // to p (objective_stress_term()). The derivatives: with u = F_b a, Q turns by d theta =
+  // (J u/|u|) . dF_b a / |u| in 2D (J the quarter turn), so dp = <p, J Q S> (J u/|u|) a^T / |u|;
+  // for a line of bonds in 3D, p a is along Q a and the rest of p meets no g_ij, so dp = 0 on the
+  // bonds' span; the plane and frame cases differentiate the normalised cross product and the
+  // Gram-Schmidt steps (docs/theory.md, section 3.3).
+  mat_type turned(const mat_type& f, std::size_t i, const mat_type* p, mat_type* dp) const {
+    if (turn_[i] == kNoTurn) return f;
+    const mat_type& v = moment_vectors_[i];
+    const vec_type s = soft_shares(i);
+    const mat_type soft = v * s.asDiagonal() * v.transpose();
+    const mat_type bonded = f - soft;
+    if (turn_[i] == kTurnWithAxis) {
+      const vec_type a = v.col(Dim - 1);
+      const vec_type u = bonded * a;
+      const Scalar length = u.norm();
+      if (!(length > 0)) return f;
+      const vec_type e1 = u / length;
+      const mat_type turned_soft = rotation_onto(a, e1) * soft;
+      if constexpr (Dim == 2) {
+        if (p) {
+          mat_type quarter;
+          quarter << 0, -1, 1, 0;
+          const Scalar torque = p->cwiseProduct(quarter * turned_soft).sum();
+          *dp = (torque / length) * (quarter * e1) * a.transpose();
+        }
+      }
+      return bonded + turned_soft;
+    }
+    if constexpr (Dim == 3) {
+      if (turn_[i] == kTurnWithPlane) {
+        const vec_type n = v.col(0), t1 = v.col(1), t2 = n.cross(t1);  // t1 x t2 = n
+        const vec_type v1 = bonded * t1, v2 = bonded * t2, normal = v1.cross(v2);
+        const Scalar area = normal.norm();
+        if (!(area > 0)) return f;
+        const vec_type q = normal / area;
+        if (p) {
+          // d(p_n . q) = pi . dN with p_n = s_n p n, pi = (I - q q^T) p_n / |N|, N = v1 x v2.
+          const vec_type pull = s[0] * (*p * n);
+          const vec_type pi = (pull - q * q.dot(pull)) / area;
+          *dp = v2.cross(pi) * t1.transpose() + pi.cross(v1) * t2.transpose();
+        }
+        return bonded + s[0] * q * n.transpose();
+      }
+      const vec_type a = v.col(2), b = v.col(1), c = a.cross(b);
+      const vec_type x = bonded * a, y = bonded * b;
+      const Scalar x_length = x.norm();
+      if (!(x_length > 0)) return f;
+      const vec_type e1 = x / x_length;
+      const vec_type w = y - e1 * e1.dot(y);
+      const Scalar w_length = w.norm();
+      if (!(w_length > 0)) return f;
+      const vec_type e2 = w / w_length, e3 = e1.cross(e2);
+      if (p) {
+        // phi = p1 . e1 + p2 . e2 + p3 . (e1 x e2), p_k = s_k p v_k, differentiated through
+        // e2 = w/|w|, w = y - (e1 . y) e1 and e1 = x/|x|.
+        const vec_type p1 = s[2] * (*p * a), p2 = s[1] * (*p * b), p3 = s[0] * (*p * c);
+        const vec_type g1 = p1 + e2.cross(p3), g2 = p2 + p3.cross(e1);
+        const vec_type h = (g2 - e2 * e2.dot(g2)) / w_length;
+        const vec_type k0 = g1 - e1.dot(h) * y - e1.dot(y) * h;
+        const vec_type k = (k0 - e1 * e1.dot(k0)) / x_length;
+        *dp = k * a.transpose() + (h - e1 * e1.dot(h)) * b.transpose();
+      }
+      return bonded + s[2] * e1 * a.transpose() + s[1] * e2 * b.transpose() + s[0] * e3 * c.transpose();
+    }
+    return f;
   }
 
   // The least rotation taking unit vector a to unit vector b: about a x b, or through pi about a
@@ -320,7 +420,9 @@ class DeformationFit {
   std::vector<moment_type, Eigen::aligned_allocator<moment_type>> inverse_moment_;
   VecArray<Dim, Scalar> gradient_sum_;
   std::vector<std::uint8_t> resolved_;  // directions the intact bonds resolve, 0 to Dim
-  VecArray<Dim, Scalar> axis_;            // the line of bonds (1 resolved) or the plane's normal (2 of 3)
+  std::vector<Turn> turn_;
+  VecArray<Dim, Scalar> moment_values_;   // eigenvalues of the linear moment, ascending
+  MatArray<Dim, Scalar> moment_vectors_;  // and its eigenvectors, as columns
 };
 
 namespace detail {
