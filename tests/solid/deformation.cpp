@@ -183,18 +183,17 @@ TEST_CASE("solid.deformation: a thinned neighbourhood reads a long weak bond acr
   CHECK((fitted - Mat<2>::Identity()).cwiseAbs().maxCoeff() <= bound * (1 + 1e-12));
   CHECK((fitted - Mat<2>::Identity()).cwiseAbs().maxCoeff() > 0.5 * bound);  // read softly, not ignored
   CHECK(bound < 0.02);
-  // The turn adds (Q - I) S, |S| <= 1, with Q the rotation taking the strongest direction a onto
-  // F_b a = g_a a + (F - I) a (g_a = lambda_a / max(lambda_a, floor)): by at most
-  // theta = asin(d / (g_a - d)), d = |(F - I) a|.
+  // The turn adds (Q - I) S, |S| <= 1, with Q the polar rotation of F_b = G + (F - I), G = I - S
+  // (eigenvalues g_k = min(1, lambda_k / floor)): by theta = atan2(F21 - F12, tr F_b), at most
+  // atan(|F21 - F12| / (tr G - |tr (F - I)|)).
   moment.setZero();
   for (Offset b = block.bonds.begin(c); b < block.bonds.end(c); ++b)
     if (block.bonds.intact(b)) moment += block.bonds.beta(b) * block.bonds.r0(b) * block.bonds.r0(b).transpose();
-  const Eigen::SelfAdjointEigenSolver<Mat<2>> thinned(moment);
-  const Vec<2> strongest = thinned.eigenvectors().col(1);
-  const double set_share = std::min(1.0, thinned.eigenvalues()[1] / (0.25 * reference));
-  const double d = ((fitted - Mat<2>::Identity()) * strongest).norm();
-  REQUIRE(d < set_share);
-  const double turn = std::asin(d / (set_share - d));
+  const Vec<2> shares = Eigen::SelfAdjointEigenSolver<Mat<2>>(moment).eigenvalues() / (0.25 * reference);
+  const double set_trace = std::min(1.0, shares[0]) + std::min(1.0, shares[1]);
+  const Mat<2> change = fitted - Mat<2>::Identity();
+  REQUIRE(std::abs(change.trace()) < set_trace);
+  const double turn = std::atan(std::abs(change(1, 0) - change(0, 1)) / (set_trace - std::abs(change.trace())));
   const Mat<2> f = block.fit.gradient(x, block.bonds, c);
   MESSAGE("fitted F - I up to " << (fitted - Mat<2>::Identity()).cwiseAbs().maxCoeff() << ", turned F - I up to "
                                 << (f - Mat<2>::Identity()).cwiseAbs().maxCoeff() << " (bound " << bound + turn << ")");

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -205,9 +206,10 @@ class DeformationFit {
   // above the floor, one where no bond is). S does not turn with the body: a rigid rotation Q
   // gives F_b = Q (I - S) and F = Q + (I - Q) S, a shear of about theta/2 at every thinned
   // particle. The turned fit is F_obj = F_b + Q(F_b) S, with Q the rotation of the particle's
-  // directions as its bonds see them: in 2D (and for a line of bonds in 3D) the rotation taking the
-  // strongest direction a onto F_b a; in 3D with one weak direction n, Q n is the unit normal of
-  // the turned strong plane; with two or three, Q takes the frame (a, b, a x b) of the strongest
+  // directions as its bonds see them: in 2D the rotation of F_b's polar decomposition (which no
+  // choice of axes enters, so mirror images turn as mirror images); for a line of bonds in 3D the
+  // rotation taking the line a onto F_b a; in 3D with one weak direction n, Q n is the unit normal
+  // of the turned strong plane; with two or three, Q takes the frame (a, b, a x b) of the strongest
   // and second directions onto the Gram-Schmidt frame of (F_b a, F_b b). F_obj = Q under any
   // rigid rotation.
   mat_type objective(const mat_type& f, std::size_t i) const { return turned(f, i, nullptr, nullptr); }
@@ -254,7 +256,8 @@ class DeformationFit {
   // bond have none to count and turn with the bonded ones (objective()).
   static constexpr Scalar kWeakDirectionFloor = Scalar(0.25);
 
-  // How particle i's F turns (objective()): kTurnWithAxis for 2D and for a line of bonds in 3D,
+  // How particle i's F turns (objective()): kTurnWithAxis in 2D (the polar rotation) and for a
+  // line of bonds in 3D,
   // kTurnWithPlane when one direction of three is weak, kTurnWithFrame when two or three are.
   enum Turn : std::uint8_t { kNoTurn, kTurnWithAxis, kTurnWithPlane, kTurnWithFrame };
 
@@ -299,33 +302,40 @@ class DeformationFit {
   }
 
   // F_obj = F_b + Q S (objective()) and, if p is given, dp = the adjoint of F_b -> Q(F_b) S applied
-  // to p (objective_stress_term()). The derivatives: with u = F_b a, Q turns by d theta =
-  // (J u/|u|) . dF_b a / |u| in 2D (J the quarter turn), so dp = <p, J Q S> (J u/|u|) a^T / |u|;
-  // for a line of bonds in 3D, p a is along Q a and the rest of p meets no g_ij, so dp = 0 on the
-  // bonds' span; the plane and frame cases differentiate the normalised cross product and the
-  // Gram-Schmidt steps (docs/theory.md, section 3.3).
+  // to p (objective_stress_term()). The derivatives: in 2D d(Q S) = d theta J Q S (J the quarter
+  // turn), so dp = <p, J Q S> d theta / dF_b; for a line of bonds in 3D, p a is along Q a and the
+  // rest of p meets no g_ij, so dp = 0 on the bonds' span; the plane and frame cases differentiate
+  // the normalised cross product and the Gram-Schmidt steps (docs/theory.md, section 3.3).
   mat_type turned(const mat_type& f, std::size_t i, const mat_type* p, mat_type* dp) const {
     if (turn_[i] == kNoTurn) return f;
     const mat_type& v = moment_vectors_[i];
     const vec_type s = soft_shares(i);
     const mat_type soft = v * s.asDiagonal() * v.transpose();
     const mat_type bonded = f - soft;
+    if constexpr (Dim == 2) {
+      // The rotation of F_b's polar decomposition, by theta = atan2(F21 - F12, F11 + F22).
+      const Scalar x = bonded(0, 0) + bonded(1, 1), y = bonded(1, 0) - bonded(0, 1);
+      const Scalar r2 = x * x + y * y;
+      if (!(r2 > 0)) return f;
+      const Scalar r = std::sqrt(r2);
+      mat_type q, quarter;
+      q << x / r, -y / r, y / r, x / r;
+      quarter << 0, -1, 1, 0;
+      const mat_type turned_soft = q * soft;
+      if (p) {
+        mat_type dtheta;  // d theta / d F_b
+        dtheta << -y, -x, x, -y;
+        *dp = (p->cwiseProduct(quarter * turned_soft).sum() / r2) * dtheta;
+      }
+      return bonded + turned_soft;
+    }
     if (turn_[i] == kTurnWithAxis) {
+      // A line of bonds: the rest of p meets no g_ij, and p a is along e1, so dp = 0 on the span.
       const vec_type a = v.col(Dim - 1);
       const vec_type u = bonded * a;
       const Scalar length = u.norm();
       if (!(length > 0)) return f;
-      const vec_type e1 = u / length;
-      const mat_type turned_soft = rotation_onto(a, e1) * soft;
-      if constexpr (Dim == 2) {
-        if (p) {
-          mat_type quarter;
-          quarter << 0, -1, 1, 0;
-          const Scalar torque = p->cwiseProduct(quarter * turned_soft).sum();
-          *dp = (torque / length) * (quarter * e1) * a.transpose();
-        }
-      }
-      return bonded + turned_soft;
+      return bonded + rotation_onto(a, u / length) * soft;
     }
     if constexpr (Dim == 3) {
       if (turn_[i] == kTurnWithPlane) {
