@@ -204,7 +204,7 @@ class DeformationFit {
   //   F = F_b + S,  F_b = sum_j beta_ij r_ij r0_ij^T M_f^-1,  S = I - M M_f^-1,
   // S being the share of each weak direction that the bonds do not set (zero where the weight is
   // above the floor, one where no bond is). S does not turn with the body: a rigid rotation Q
-  // gives F_b = Q (I - S) and F = Q + (I - Q) S, a shear of about theta/2 at every thinned
+  // gives F_b = Q (I - S) and F = Q + (I - Q) S, a shear of about theta s / 2 at every thinned
   // particle. The turned fit is F_obj = F_b + Q(F_b) S, with Q the rotation of the particle's
   // directions as its bonds see them: in 2D the rotation of F_b's polar decomposition (which no
   // choice of axes enters, so mirror images turn as mirror images); for a line of bonds in 3D the
@@ -257,8 +257,8 @@ class DeformationFit {
   static constexpr Scalar kWeakDirectionFloor = Scalar(0.25);
 
   // How particle i's F turns (objective()): kTurnWithAxis in 2D (the polar rotation) and for a
-  // line of bonds in 3D,
-  // kTurnWithPlane when one direction of three is weak, kTurnWithFrame when two or three are.
+  // line of bonds in 3D, kTurnWithPlane when one direction of three is weak, kTurnWithFrame when
+  // two or three are.
   enum Turn : std::uint8_t { kNoTurn, kTurnWithAxis, kTurnWithPlane, kTurnWithFrame };
 
   void resize_soft_reading(std::size_t n) {
