@@ -90,7 +90,7 @@ void check_force_loop_against_bond_sum(ModelBlock<Dim, CorrectedTotalLagrangian<
       Mat<Dim> fitted = Mat<Dim>::Identity(), residual = Mat<Dim>::Zero();
       for (Offset b = block.bonds.begin(i); b < block.bonds.end(i); ++b) {
         const auto j = static_cast<std::size_t>(block.bonds.neighbor(b));
-        const Vec<Dim> r0 = block.bonds.r0(b);
+        const Vec<Dim>& r0 = block.bonds.r0(b);
         fitted += (x[j] - x[i] - r0) * fit.gradient_coefficient(b).transpose();
         residual += block.bonds.beta(b) * (x[j] - x[i] - a * fit.basis(r0)) * r0.transpose();
       }
