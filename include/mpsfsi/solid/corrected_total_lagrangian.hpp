@@ -160,6 +160,12 @@ class CorrectedTotalLagrangian {
     constexpr std::size_t slot_size = packed_type::rows * lanes;
     const std::size_t groups = packed_.num_groups();
     const std::size_t band = packed_.bandwidth();
+    // The first pass asks for the bond stream 2 KiB ahead (clamped to its last slot): in 3D the
+    // stream is far larger than the cache, the hardware prefetchers stop at every 4 KiB page, and
+    // without it the loop waited on each slot's first loads (docs/performance.md, the solid's
+    // force loop).
+    const std::size_t total_slots = static_cast<std::size_t>(packed_.end(groups - 1));
+    const std::size_t slots_ahead = std::max<std::size_t>(1, 2048 / (slot_size * sizeof(Scalar)));
     // Thread t's block of groups, its particles, and the particles its bond loop writes to: that
     // block widened by the bandwidth.
     auto group_block = [&](int t, int team, std::size_t& lo, std::size_t& hi) {
@@ -220,6 +226,7 @@ class CorrectedTotalLagrangian {
           const Offset s = first + static_cast<Offset>(k);
           const Index* const nb = neighbors + static_cast<std::size_t>(s) * lanes;
           const Scalar* const slot = blocks + static_cast<std::size_t>(s) * slot_size;
+          prefetch_slot(neighbors, blocks, std::min(static_cast<std::size_t>(s) + slots_ahead, total_slots - 1));
           lane_type d[Dim];
           for (std::size_t l = 0; l < lanes; ++l) {
             const vec_type& xj = pos[nb[l]];
@@ -391,6 +398,21 @@ class CorrectedTotalLagrangian {
   const fit_type& fit() const { return fit_; }
 
  private:
+  // Asks the cache for slot s of the packed bonds (its neighbour indices and its block of scalars).
+  static void prefetch_slot(const Index* neighbors, const Scalar* blocks, std::size_t s) {
+#if defined(__GNUC__)
+    using packed_type = detail::PackedBonds<Dim, Scalar, lanes>;
+    constexpr std::size_t bytes = packed_type::rows * lanes * sizeof(Scalar);
+    const char* const block = reinterpret_cast<const char*>(blocks + s * packed_type::rows * lanes);
+    for (std::size_t byte = 0; byte < bytes; byte += 64) __builtin_prefetch(block + byte);
+    __builtin_prefetch(neighbors + s * lanes);
+#else
+    static_cast<void>(neighbors);
+    static_cast<void>(blocks);
+    static_cast<void>(s);
+#endif
+  }
+
   // sigma = (F S) F^T / det F per lane, with F S = vp / V, into the particles i0 .. i0 + present.
   template <class Lane>
   static void store_cauchy(const Lane (&u)[Dim][width], const Lane (&vp)[Dim][Dim], Scalar volume, std::size_t i0,

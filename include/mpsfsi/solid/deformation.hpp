@@ -328,16 +328,15 @@ class DeformationFit {
         *dp = (p->cwiseProduct(quarter * turned_soft).sum() / r2) * dtheta;
       }
       return bonded + turned_soft;
-    }
-    if (turn_[i] == kTurnWithAxis) {
-      // A line of bonds: the rest of p meets no g_ij, and p a is along e1, so dp = 0 on the span.
-      const vec_type a = v.col(Dim - 1);
-      const vec_type u = bonded * a;
-      const Scalar length = u.norm();
-      if (!(length > 0)) return f;
-      return bonded + rotation_onto(a, u / length) * soft;
-    }
-    if constexpr (Dim == 3) {
+    } else {
+      if (turn_[i] == kTurnWithAxis) {
+        // A line of bonds: the rest of p meets no g_ij, and p a is along e1, so dp = 0 on the span.
+        const vec_type a = v.col(Dim - 1);
+        const vec_type u = bonded * a;
+        const Scalar length = u.norm();
+        if (!(length > 0)) return f;
+        return bonded + rotation_onto(a, u / length) * soft;
+      }
       if (turn_[i] == kTurnWithPlane) {
         const vec_type n = v.col(0), t1 = v.col(1), t2 = n.cross(t1);  // t1 x t2 = n
         const vec_type v1 = bonded * t1, v2 = bonded * t2, normal = v1.cross(v2);
@@ -373,28 +372,20 @@ class DeformationFit {
       }
       return bonded + s[2] * e1 * a.transpose() + s[1] * e2 * b.transpose() + s[0] * e3 * c.transpose();
     }
-    return f;
   }
 
-  // The least rotation taking unit vector a to unit vector b: about a x b, or through pi about a
-  // direction normal to a when b = -a.
+  // The least rotation taking unit vector a to unit vector b (3D): about a x b, or through pi
+  // about a direction normal to a when b = -a.
   static mat_type rotation_onto(const vec_type& a, const vec_type& b) {
     const Scalar c = a.dot(b);
-    if constexpr (Dim == 2) {
-      const Scalar s = a[0] * b[1] - a[1] * b[0];
-      mat_type r;
-      r << c, -s, s, c;
-      return r;
-    } else {
-      if (c < Scalar(-1) + Scalar(1e-12)) {
-        const vec_type p = a.unitOrthogonal();
-        return Scalar(2) * p * p.transpose() - mat_type::Identity();
-      }
-      const vec_type v = a.cross(b);
-      mat_type k;
-      k << 0, -v[2], v[1], v[2], 0, -v[0], -v[1], v[0], 0;
-      return mat_type::Identity() + k + k * k / (1 + c);  // Rodrigues' formula
+    if (c < Scalar(-1) + Scalar(1e-12)) {
+      const vec_type p = a.unitOrthogonal();
+      return Scalar(2) * p * p.transpose() - mat_type::Identity();
     }
+    const vec_type v = a.cross(b);
+    mat_type k;
+    k << 0, -v[2], v[1], v[2], 0, -v[0], -v[1], v[0], 0;
+    return mat_type::Identity() + k + k * k / (1 + c);  // Rodrigues' formula
   }
 
   // Eigen-decomposition of particle i's linear moment matrix sum_j beta_ij r0_ij r0_ij^T.
