@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -10,6 +11,7 @@
 #include "mpsfsi/fracture/failure_stress.hpp"
 #include "mpsfsi/kernels/weight.hpp"
 #include "mpsfsi/scenes/solid_block.hpp"
+#include "mpsfsi/solid/deformation.hpp"
 
 using namespace mpsfsi;
 
@@ -96,22 +98,25 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a cut-out neighbour weighs the part
 
 // The screened read averages only where the highest bound over a particle's neighbourhood reaches
 // the strength. A bar in tension rising from 0 at the left end to 2 MPa at the right, with noise,
-// strength 1.6 MPa: the left part is screened out. Where read_screened() computed a tensor it is
-// read()'s to the bit, where it did not sigma_1 of read()'s is below the strength (the screen is
-// sound), and complete() fills in read()'s tensors to the bit, also after bonds are cut before
-// the read; a cut between the read and complete() is refused. A NaN sample anywhere screens
-// nothing out.
+// read at the centres and, with the fit, at the surface (a displacement that stretches the bar as
+// the samples do). Three strengths: 1.6 MPa, reached over the right fifth (the screen takes the
+// highest bound over every neighbourhood); just under the highest read, reached by a few samples
+// (the screen follows them through the bonds); and out of reach (nothing is averaged). Where
+// read_screened() computed a tensor it is read()'s to the bit, where it did not sigma_1 of
+// read()'s is below the strength (the screen is sound), and complete() fills in read()'s tensors
+// to the bit, also after bonds are cut before the read; a cut between the read and complete() is
+// refused. A NaN sample anywhere screens nothing out.
 TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read where failure is possible", T,
                    std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
   constexpr int Dim = T::value;
-  const double l0 = 0.01, re = 2.1 * l0, length = 0.2, strength = 1.6e6;
+  const double l0 = 0.01, re = 2.1 * l0, length = 0.2;
   Vec<Dim> upper = Vec<Dim>::Constant(0.04);
   upper[0] = length;
   const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
-  const auto& x = block.positions();
-  const std::size_t n = x.size();
+  const auto& reference = block.positions();
+  const std::size_t n = reference.size();
   BondList<Dim> bonds;
-  bonds.template build<KoshizukaWeight>(x, std::vector<std::int32_t>(n, 0), re);
+  bonds.template build<KoshizukaWeight>(reference, std::vector<std::int32_t>(n, 0), re);
   std::mt19937 random(7);
   std::uniform_real_distribution<double> noise(-5e4, 5e4);
   MatArray<Dim, double> point(n);
@@ -119,15 +124,27 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
     Mat<Dim> t;
     for (int a = 0; a < Dim; ++a)
       for (int b = 0; b <= a; ++b) t(a, b) = t(b, a) = noise(random);
-    t(0, 0) += 2e6 * x[k][0] / length;
+    t(0, 0) += 2e6 * reference[k][0] / length;
     point[k] = t;
   }
+  // u_x = a X^2 / 2: the strain a X, 2 MPa at the right end under lambda + 2 mu = 1.4 GPa.
+  const LameConstants<double> lame{6e8, 4e8};
+  const double stretch = 2e6 / (lame.lambda + 2 * lame.mu) / length;
+  VecArray<Dim, double> x = reference;
+  for (auto& p : x) p[0] += 0.5 * stretch * p[0] * p[0];
+  DeformationFit<Dim, double> fit;
+  fit.build(bonds, l0);
   typename FailureStressReadout<Dim>::Settings settings;
   settings.l0 = l0;
   settings.self_weight = KoshizukaWeight::value(l0, re);
+  settings.lame = lame;
+  for (std::size_t k = 0; k < n; ++k) {  // a full neighbourhood's weight
+    double sum = 0;
+    for (Offset b = bonds.begin(k); b < bonds.end(k); ++b) sum += bonds.weight(b);
+    settings.n0 = std::max(settings.n0, sum);
+  }
   const auto unloaded = [](std::size_t) { return false; };
   const auto bound = [](const Mat<Dim>& t) { return MaxPrincipalStress::upper_bound<Dim, double>(t); };
-  const auto may_fail = [&](std::size_t, double b) { return !(b < strength); };
   const auto sigma_1 = [](const Mat<Dim>& t) {
     Vec<Dim> direction;
     return MaxPrincipalStress::principal<Dim, double>(t, direction);
@@ -136,42 +153,68 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
     return std::memcmp(a.data(), b.data(), sizeof(double) * Dim * Dim) == 0;
   };
 
-  for (const bool cut_some : {false, true}) {
-    CAPTURE(cut_some);
-    FailureStressReadout<Dim> full, screened;
-    full.read(point, x, x, bonds, nullptr, unloaded, settings);  // first reads: the same weights
-    screened.read(point, x, x, bonds, nullptr, unloaded, settings);
-    if (cut_some)  // every third particle's first bond, cut after the first read
-      for (std::size_t i = 0; i < n; i += 3) bonds.cut(bonds.begin(i));
-    const MatArray<Dim, double> expected = full.read(point, x, x, bonds, nullptr, unloaded, settings);
-    const auto& got = screened.read_screened(point, x, x, bonds, nullptr, unloaded, settings, bound, may_fail);
-    std::size_t left_out = 0, differ = 0, unsound = 0, may_fail_count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      may_fail_count += sigma_1(expected[i]) >= strength ? 1 : 0;
-      if (screened.evaluated(i)) {
-        differ += same_bits(got[i], expected[i]) ? 0 : 1;
-      } else {
-        ++left_out;
-        unsound += sigma_1(expected[i]) < strength ? 0 : 1;
+  for (const bool at_surface : {false, true}) {
+    const DeformationFit<Dim, double>* const fitted = at_surface ? &fit : nullptr;
+    for (const int which : {0, 1, 2}) {
+      for (const bool cut_some : {false, true}) {
+        CAPTURE(at_surface);
+        CAPTURE(which);
+        CAPTURE(cut_some);
+        BondList<Dim> cut = bonds;
+        FailureStressReadout<Dim> full, screened;
+        full.read(point, x, reference, cut, fitted, unloaded, settings);  // first reads: the same weights
+        screened.read(point, x, reference, cut, fitted, unloaded, settings);
+        if (cut_some)  // every third particle's first bond, cut after the first read
+          for (std::size_t i = 0; i < n; i += 3) cut.cut(cut.begin(i));
+        const MatArray<Dim, double> expected = full.read(point, x, reference, cut, fitted, unloaded, settings);
+        if (at_surface && !cut_some) {  // the surface is read outside
+          FailureStressReadout<Dim> centres;
+          const auto& centre_read = centres.read(point, x, reference, cut, nullptr, unloaded, settings);
+          std::size_t read_outside = 0;
+          for (std::size_t i = 0; i < n; ++i) read_outside += same_bits(centre_read[i], expected[i]) ? 0 : 1;
+          CHECK(read_outside > 0);
+        }
+        double highest = 0;
+        for (const auto& t : expected) highest = std::max(highest, sigma_1(t));
+        const double strength = which == 0 ? 1.6e6 : which == 1 ? highest * (1 - 1e-3) : 1e30;
+        const auto may_fail = [&](std::size_t, double b) { return !(b < strength); };
+        const auto& got = screened.read_screened(point, x, reference, cut, fitted, unloaded, settings, bound, may_fail,
+                                                 strength);
+        std::size_t left_out = 0, differ = 0, unsound = 0, may_fail_count = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          may_fail_count += sigma_1(expected[i]) >= strength ? 1 : 0;
+          if (screened.evaluated(i)) {
+            differ += same_bits(got[i], expected[i]) ? 0 : 1;
+          } else {
+            ++left_out;
+            unsound += sigma_1(expected[i]) < strength ? 0 : 1;
+          }
+        }
+        CHECK(left_out == screened.screened_out());
+        if (which == 2) {
+          CHECK(left_out == n);
+        } else {
+          CHECK(may_fail_count > 0);
+          CHECK(left_out > n / 2);  // sigma_xx reaches 1.6 MPa at 0.8 of the length
+          CHECK(left_out < n);
+        }
+        CHECK(differ == 0);
+        CHECK(unsound == 0);
+        screened.complete(point, cut);
+        differ = 0;
+        for (std::size_t i = 0; i < n; ++i) differ += same_bits(got[i], expected[i]) ? 0 : 1;
+        CHECK(differ == 0);
+        CHECK(screened.screened_out() == 0);
       }
     }
-    CHECK(may_fail_count > 0);
-    CHECK(left_out == screened.screened_out());
-    CHECK(left_out > n / 2);  // sigma_xx reaches 1.6 MPa at 0.8 of the length
-    CHECK(left_out < n);
-    CHECK(differ == 0);
-    CHECK(unsound == 0);
-    screened.complete(point, bonds);
-    differ = 0;
-    for (std::size_t i = 0; i < n; ++i) differ += same_bits(got[i], expected[i]) ? 0 : 1;
-    CHECK(differ == 0);
-    CHECK(screened.screened_out() == 0);
   }
+  const double strength = 1.6e6;
+  const auto may_fail = [&](std::size_t, double b) { return !(b < strength); };
 
   // A bond cut between the screened read and complete(): completing would mix the two states.
   {
     FailureStressReadout<Dim> screened;
-    screened.read_screened(point, x, x, bonds, nullptr, unloaded, settings, bound, may_fail);
+    screened.read_screened(point, x, reference, bonds, nullptr, unloaded, settings, bound, may_fail, strength);
     REQUIRE(screened.screened_out() > 0);
     Offset intact = bonds.begin(1);
     while (intact < bonds.end(1) && !bonds.intact(intact)) ++intact;
@@ -186,7 +229,7 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
     if (x[k][0] < x[nan_at][0]) nan_at = k;
   point[nan_at](0, 1) = std::numeric_limits<double>::quiet_NaN();
   FailureStressReadout<Dim> screened;
-  screened.read_screened(point, x, x, bonds, nullptr, unloaded, settings, bound, may_fail);
+  screened.read_screened(point, x, reference, bonds, nullptr, unloaded, settings, bound, may_fail, strength);
   CHECK(screened.screened_out() == 0);
 }
 

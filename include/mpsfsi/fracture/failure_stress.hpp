@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
@@ -84,17 +85,18 @@ class FailureStressReadout {
   // The same read, averaged only where a particle may need it: `bound(sigma)`, a convex upper
   // bound of the criterion's value (a weighted average of tensors then bounds no higher than the
   // highest of them), and `may_fail(i, b)`, whether particle i can fail when b bounds the value of
-  // its read tensor. An average (and the second, along the face) is a convex combination of the
-  // particle's and its bonded neighbours' samples, so the largest bound over the particle's
-  // neighbourhood (its neighbours' for the second pass) bounds its read. Where that rules failure
-  // out, the read is left for complete(): evaluated(i) says where the returned tensors hold.
-  // complete(), given the same `point` and `bonds` as they were at this call (FractureProcess
-  // completes before anything changes them), gives to the bit the tensors read() would have.
+  // its read tensor, false for every b below `floor` (the lowest strength). An average (and the
+  // second, along the face) is a convex combination of the particle's and its bonded neighbours'
+  // samples, so the largest bound over the particle's neighbourhood (its neighbours' for the
+  // second pass) bounds its read. Where that rules failure out, the read is left for complete():
+  // evaluated(i) says where the returned tensors hold. complete(), given the same `point` and
+  // `bonds` as they were at this call (FractureProcess completes before anything changes them),
+  // gives to the bit the tensors read() would have.
   template <class Loaded, class Bound, class MayFail>
   const MatArray<Dim, double>& read_screened(const MatArray<Dim, double>& point, const VecArray<Dim, double>& x,
                                              const VecArray<Dim, double>& reference,
                                              const BondList<Dim, double>& bonds, const fit_type* fit, Loaded&& loaded,
-                                             const Settings& s, Bound&& bound, MayFail&& may_fail) {
+                                             const Settings& s, Bound&& bound, MayFail&& may_fail, double floor) {
     const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s);
     if (!s.average) return sampled;
     const std::size_t n = point.size();
@@ -121,28 +123,42 @@ class FailureStressReadout {
       largest_norm = std::max(largest_norm, std::max(centre_norm, surface_norm));
     }
     const double margin = 1e-9 * largest_norm;
-    neighbourhood_highest(bonds, sample_bound_, reach_bound_, nullptr);  // bounds the first pass
-    if (at_surface_) {  // bounds the second, along the face
-      neighbourhood_highest(bonds, reach_bound_, sample_bound_, &read_outside_);
-      reach_bound_.swap(sample_bound_);
-    }
-    MPSFSI_OMP(parallel for schedule(static))
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      needed_[i] = not_a_number || may_fail(i, reach_bound_[i] + margin) ? 1 : 0;
-    }
-    // The second pass of a needed particle reads the first of its face neighbours: bonds are
-    // symmetric, so a particle's first pass is needed where it or a bonded neighbour is. Without
-    // the second pass, the first is needed where the read is.
-    if (at_surface_) {
-      first_pass_needed_.resize(n);
+    // Only a sample whose bound reaches the floor can let a neighbourhood's reach it. Where such
+    // samples are few (a loading phase), the screen follows them through the bonds; otherwise it
+    // takes the highest bound over every particle's neighbourhood. Both give the same needed_.
+    hot_.clear();
+    if (!not_a_number)
+      for (std::size_t k = 0; k < n && hot_.size() * kSparseScreen <= n; ++k)
+        if (!(sample_bound_[k] + margin < floor)) hot_.push_back(k);
+    if (not_a_number) {
+      std::fill(needed_.begin(), needed_.end(), std::uint8_t(1));
+      if (at_surface_) first_pass_needed_.assign(n, 1);
+    } else if (hot_.size() * kSparseScreen <= n) {
+      screen_from_hot(bonds, may_fail, margin);
+    } else {
+      neighbourhood_highest(bonds, sample_bound_, reach_bound_, nullptr);  // bounds the first pass
+      if (at_surface_) {  // bounds the second, along the face
+        neighbourhood_highest(bonds, reach_bound_, sample_bound_, &read_outside_);
+        reach_bound_.swap(sample_bound_);
+      }
       MPSFSI_OMP(parallel for schedule(static))
-      for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(n); ++kk) {
-        const auto k = static_cast<std::size_t>(kk);
-        std::uint8_t need = needed_[k];
-        for (Offset b = bonds.begin(k); b < bonds.end(k) && !need; ++b)
-          need = needed_[static_cast<std::size_t>(bonds.neighbor(b))];
-        first_pass_needed_[k] = need;
+      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
+        needed_[i] = may_fail(i, reach_bound_[i] + margin) ? 1 : 0;
+      }
+      // The second pass of a needed particle reads the first of its face neighbours: bonds are
+      // symmetric, so a particle's first pass is needed where it or a bonded neighbour is.
+      // Without the second pass, the first is needed where the read is.
+      if (at_surface_) {
+        first_pass_needed_.resize(n);
+        MPSFSI_OMP(parallel for schedule(static))
+        for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(n); ++kk) {
+          const auto k = static_cast<std::size_t>(kk);
+          std::uint8_t need = needed_[k];
+          for (Offset b = bonds.begin(k); b < bonds.end(k) && !need; ++b)
+            need = needed_[static_cast<std::size_t>(bonds.neighbor(b))];
+          first_pass_needed_[k] = need;
+        }
       }
     }
     average_pass(point, bonds, sampled, false, averaged_, &first_pass_needed());
@@ -211,6 +227,10 @@ class FailureStressReadout {
   // whose samples lie on the side faces).
   static constexpr double kSurfaceThreshold = 0.1;
   static constexpr double kSameFace = 0.9;
+  // read_screened() follows the samples that reach the floor through the bonds while they are at
+  // most 1/16 of the particles (a loading phase has few or none): each costs a few serial passes
+  // over its bonds and its neighbours', against three parallel passes over all bonds.
+  static constexpr std::size_t kSparseScreen = 16;
 
   bool same_face(std::size_t i, std::size_t k) const {
     return read_outside_[k] != 0 && normal_[i].dot(normal_[k]) >= kSameFace;
@@ -253,6 +273,80 @@ class FailureStressReadout {
 
   // Which particles' first averaging pass read_screened() computed.
   const std::vector<std::uint8_t>& first_pass_needed() const { return at_surface_ ? first_pass_needed_ : needed_; }
+
+  // needed_ (and first_pass_needed_) from the few particles in hot_: the same values as the
+  // highest bounds over every neighbourhood give, computed only where a hot sample reaches. A
+  // particle with no hot sample in its neighbourhood (first pass) or in its face neighbours'
+  // (second) has every bound below the floor, where may_fail is false.
+  template <class MayFail>
+  void screen_from_hot(const BondList<Dim, double>& bonds, MayFail&& may_fail, double margin) {
+    const std::size_t n = sample_bound_.size();
+    level_.assign(n, 0);
+    std::fill(needed_.begin(), needed_.end(), std::uint8_t(0));
+    // Level 1: the hot particles and their bonded neighbours, cut or not, with the highest sample
+    // bound over their neighbourhoods (the first pass's bound, as neighbourhood_highest gives it).
+    reached_.clear();
+    const auto reach = [&](std::size_t i, std::uint8_t level) {
+      if (level_[i] != 0) return;
+      level_[i] = level;
+      reached_.push_back(i);
+    };
+    for (const std::size_t k : hot_) {
+      reach(k, 1);
+      for (Offset b = bonds.begin(k); b < bonds.end(k); ++b) reach(static_cast<std::size_t>(bonds.neighbor(b)), 1);
+    }
+    const auto reached = static_cast<std::int64_t>(reached_.size());
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t r = 0; r < reached; ++r) {
+      const std::size_t i = reached_[static_cast<std::size_t>(r)];
+      double h = sample_bound_[i];
+      for (Offset b = bonds.begin(i); b < bonds.end(i); ++b)
+        h = std::max(h, sample_bound_[static_cast<std::size_t>(bonds.neighbor(b))]);
+      reach_bound_[i] = h;
+    }
+    if (at_surface_) {
+      // Level 2: particles read outside with a level-1 neighbour. A particle read outside takes
+      // the highest first-pass bound over its bonded neighbours; only level-1 ones can reach the
+      // floor.
+      for (std::int64_t r = 0; r < reached; ++r) {
+        const std::size_t k = reached_[static_cast<std::size_t>(r)];
+        for (Offset b = bonds.begin(k); b < bonds.end(k); ++b) {
+          const auto i = static_cast<std::size_t>(bonds.neighbor(b));
+          if (read_outside_[i]) reach(i, 2);
+        }
+      }
+      const auto all = static_cast<std::int64_t>(reached_.size());
+      MPSFSI_OMP(parallel for schedule(static))
+      for (std::int64_t r = 0; r < all; ++r) {
+        const std::size_t i = reached_[static_cast<std::size_t>(r)];
+        double h = level_[i] == 1 ? reach_bound_[i] : -std::numeric_limits<double>::infinity();
+        if (read_outside_[i])
+          for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
+            const auto k = static_cast<std::size_t>(bonds.neighbor(b));
+            if (level_[k] == 1) h = std::max(h, reach_bound_[k]);
+          }
+        sample_bound_[i] = h;  // the bound of the read, apart from level 1's (read above)
+      }
+      MPSFSI_OMP(parallel for schedule(static))
+      for (std::int64_t r = 0; r < all; ++r) {
+        const std::size_t i = reached_[static_cast<std::size_t>(r)];
+        needed_[i] = may_fail(i, sample_bound_[i] + margin) ? 1 : 0;
+      }
+      // A needed particle's second pass reads its bonded neighbours' first.
+      first_pass_needed_.assign(n, 0);
+      for (const std::size_t i : reached_) {
+        if (!needed_[i]) continue;
+        first_pass_needed_[i] = 1;
+        for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) first_pass_needed_[static_cast<std::size_t>(bonds.neighbor(b))] = 1;
+      }
+    } else {
+      MPSFSI_OMP(parallel for schedule(static))
+      for (std::int64_t r = 0; r < reached; ++r) {
+        const std::size_t i = reached_[static_cast<std::size_t>(r)];
+        needed_[i] = may_fail(i, reach_bound_[i] + margin) ? 1 : 0;
+      }
+    }
+  }
 
   // out[i]: the highest of in[] over particle i and its bonded neighbours, cut or not; with
   // `only`, just where it is set (elsewhere in[i]).
@@ -322,6 +416,8 @@ class FailureStressReadout {
   // passes) it computed, whether it left some out, and the bonds cut when it read.
   std::vector<double> sample_bound_, reach_bound_;
   std::vector<std::uint8_t> needed_, first_pass_needed_;
+  std::vector<std::size_t> hot_, reached_;  // samples that reach the floor; the particles they reach
+  std::vector<std::uint8_t> level_;         // 1: reached by a hot sample's bonds, 2: on its face beyond
   bool pending_ = false;
   std::size_t cuts_at_read_ = 0;
 };

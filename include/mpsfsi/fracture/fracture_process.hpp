@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -115,6 +116,13 @@ class FractureProcess {
     const auto& strength = s.set.field(strength_);
     auto& read = s.set.field(failure_stress_);
     const auto candidate = [&](std::size_t i) { return !fixed(i) && s.bonds.intact_count(i) > 0; };
+    const auto lowest_strength = [&] {
+      double lowest = std::numeric_limits<double>::infinity();
+      MPSFSI_OMP(parallel for schedule(static) reduction(min : lowest))
+      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii)
+        lowest = std::min(lowest, strength[static_cast<std::size_t>(ii)]);
+      return lowest;
+    };
     // With a convex bound, the averages are computed only where the bound of the particle's
     // neighbourhood reaches its strength (FailureStressReadout::read_screened).
     const auto& sigma = [&]() -> const MatArray<Dim, double>& {
@@ -122,7 +130,7 @@ class FractureProcess {
         return readout_.read_screened(
             s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout,
             [&](const Mat<Dim, double>& t) { return failure_.template upper_bound<Dim, double>(t); },
-            [&](std::size_t i, double bound) { return candidate(i) && !(bound < strength[i]); });
+            [&](std::size_t i, double bound) { return candidate(i) && !(bound < strength[i]); }, lowest_strength());
       else
         return readout_.read(s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout);
     }();
