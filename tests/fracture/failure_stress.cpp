@@ -191,6 +191,15 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
           }
         }
         CHECK(left_out == screened.screened_out());
+        // The same particles as the screen over every neighbourhood leaves out: with no floor
+        // every sample counts as one that may reach the strength.
+        FailureStressReadout<Dim> dense;
+        dense.read(point, x, reference, bonds, fitted, unloaded, settings);
+        dense.read_screened(point, x, reference, cut, fitted, unloaded, settings, bound, may_fail,
+                            -std::numeric_limits<double>::infinity());
+        std::size_t other_mask = 0;
+        for (std::size_t i = 0; i < n; ++i) other_mask += screened.evaluated(i) == dense.evaluated(i) ? 0 : 1;
+        CHECK(other_mask == 0);
         if (which == 2) {
           CHECK(left_out == n);
         } else {

@@ -228,8 +228,8 @@ class FailureStressReadout {
   static constexpr double kSurfaceThreshold = 0.1;
   static constexpr double kSameFace = 0.9;
   // read_screened() follows the samples that reach the floor through the bonds while they are at
-  // most 1/16 of the particles (a loading phase has few or none): each costs a few serial passes
-  // over its bonds and its neighbours', against three parallel passes over all bonds.
+  // most 1/16 of the particles (a loading phase has few or none): the bonds of their
+  // neighbourhoods are read a few times, against three passes over all bonds.
   static constexpr std::size_t kSparseScreen = 16;
 
   bool same_face(std::size_t i, std::size_t k) const {
@@ -276,8 +276,9 @@ class FailureStressReadout {
 
   // needed_ (and first_pass_needed_) from the few particles in hot_: the same values as the
   // highest bounds over every neighbourhood give, computed only where a hot sample reaches. A
-  // particle with no hot sample in its neighbourhood (first pass) or in its face neighbours'
-  // (second) has every bound below the floor, where may_fail is false.
+  // particle with no hot sample in its neighbourhood (first pass) or, read outside, in its bonded
+  // neighbours' (second) has every bound below the floor, where may_fail is false. Relies on
+  // symmetric bonds (BondList), cut or not, as neighbourhood_highest reads them.
   template <class MayFail>
   void screen_from_hot(const BondList<Dim, double>& bonds, MayFail&& may_fail, double margin) {
     const std::size_t n = sample_bound_.size();
@@ -325,7 +326,7 @@ class FailureStressReadout {
             const auto k = static_cast<std::size_t>(bonds.neighbor(b));
             if (level_[k] == 1) h = std::max(h, reach_bound_[k]);
           }
-        sample_bound_[i] = h;  // the bound of the read, apart from level 1's (read above)
+        sample_bound_[i] = h;  // the bound of i's read (reach_bound_ keeps the first pass's)
       }
       MPSFSI_OMP(parallel for schedule(static))
       for (std::int64_t r = 0; r < all; ++r) {

@@ -116,12 +116,17 @@ class FractureProcess {
     const auto& strength = s.set.field(strength_);
     auto& read = s.set.field(failure_stress_);
     const auto candidate = [&](std::size_t i) { return !fixed(i) && s.bonds.intact_count(i) > 0; };
+    // Below it no particle can fail (read_screened's floor); a NaN strength screens nothing out.
     const auto lowest_strength = [&] {
       double lowest = std::numeric_limits<double>::infinity();
-      MPSFSI_OMP(parallel for schedule(static) reduction(min : lowest))
-      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii)
-        lowest = std::min(lowest, strength[static_cast<std::size_t>(ii)]);
-      return lowest;
+      int not_a_number = 0;
+      MPSFSI_OMP(parallel for schedule(static) reduction(min : lowest) reduction(| : not_a_number))
+      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+        const double value = strength[static_cast<std::size_t>(ii)];
+        not_a_number |= std::isnan(value) ? 1 : 0;
+        lowest = std::min(lowest, value);
+      }
+      return not_a_number ? -std::numeric_limits<double>::infinity() : lowest;
     };
     // With a convex bound, the averages are computed only where the bound of the particle's
     // neighbourhood reaches its strength (FailureStressReadout::read_screened).

@@ -129,7 +129,6 @@ class CorrectedTotalLagrangian {
                            mat_type* const cauchy, const Scalar viscosity) {
     using lane_type = Eigen::Array<Scalar, lanes, 1>;
     using lane_map = Eigen::Map<const lane_type>;
-    using packed_type = detail::PackedBonds<Dim, Scalar, lanes>;
     const std::size_t count = x.size();
     const Scalar v = context_.volume;
     const Scalar c2 = 2 * stabilization_constant();
@@ -157,7 +156,6 @@ class CorrectedTotalLagrangian {
     const vec_type* const pos = x.data();
     const Index* const neighbors = packed_.neighbors(0);
     const Scalar* const blocks = packed_.block(0);
-    constexpr std::size_t slot_size = packed_type::rows * lanes;
     const std::size_t groups = packed_.num_groups();
     const std::size_t band = packed_.bandwidth();
     // The first pass asks for the bond stream 2 KiB ahead (clamped to its last slot): in 3D the
@@ -226,7 +224,8 @@ class CorrectedTotalLagrangian {
           const Offset s = first + static_cast<Offset>(k);
           const Index* const nb = neighbors + static_cast<std::size_t>(s) * lanes;
           const Scalar* const slot = blocks + static_cast<std::size_t>(s) * slot_size;
-          prefetch_slot(neighbors, blocks, std::min(static_cast<std::size_t>(s) + slots_ahead, total_slots - 1));
+          const std::size_t ahead = std::min(static_cast<std::size_t>(s) + slots_ahead, total_slots - 1);
+          prefetch_slot(neighbors + ahead * lanes, blocks + ahead * slot_size);
           lane_type d[Dim];
           for (std::size_t l = 0; l < lanes; ++l) {
             const vec_type& xj = pos[nb[l]];
@@ -398,18 +397,18 @@ class CorrectedTotalLagrangian {
   const fit_type& fit() const { return fit_; }
 
  private:
-  // Asks the cache for slot s of the packed bonds (its neighbour indices and its block of scalars).
-  static void prefetch_slot(const Index* neighbors, const Scalar* blocks, std::size_t s) {
+  using packed_type = detail::PackedBonds<Dim, Scalar, lanes>;
+  static constexpr std::size_t slot_size = packed_type::rows * lanes;  // scalars in a slot's block
+
+  // Asks the cache for a slot of the packed bonds: its neighbour indices and its block of scalars.
+  static void prefetch_slot(const Index* neighbors, const Scalar* block) {
 #if defined(__GNUC__)
-    using packed_type = detail::PackedBonds<Dim, Scalar, lanes>;
-    constexpr std::size_t bytes = packed_type::rows * lanes * sizeof(Scalar);
-    const char* const block = reinterpret_cast<const char*>(blocks + s * packed_type::rows * lanes);
-    for (std::size_t byte = 0; byte < bytes; byte += 64) __builtin_prefetch(block + byte);
-    __builtin_prefetch(neighbors + s * lanes);
+    const char* const bytes = reinterpret_cast<const char*>(block);
+    for (std::size_t byte = 0; byte < slot_size * sizeof(Scalar); byte += 64) __builtin_prefetch(bytes + byte);
+    __builtin_prefetch(neighbors);
 #else
     static_cast<void>(neighbors);
-    static_cast<void>(blocks);
-    static_cast<void>(s);
+    static_cast<void>(block);
 #endif
   }
 
@@ -459,7 +458,7 @@ class CorrectedTotalLagrangian {
 
   SolidModelContext<Dim, Scalar> context_;
   fit_type fit_;
-  detail::PackedBonds<Dim, Scalar, lanes> packed_;
+  packed_type packed_;
   VecArray<Dim, Scalar> partial_;  // the forces threads 1.. add up, one copy per thread
   VecArray<Dim, Scalar> unused_force_;  // what stresses() computes besides them
   std::vector<Scalar> scratch_;  // r_ij of the group in hand (Dim x lanes per slot), per thread
