@@ -2,209 +2,47 @@
 // The ice of the floating-beam scene on a Winkler foundation instead of water: the solid's side
 // of floating ice, against Hetenyi's semi-infinite beam (scenes/floating_ice_beam.hpp) in
 // deflection and in fracture under an end load, and against a rigid slope (Croasdale's breaking
-// term). docs/validation/fracture.md, "Ice on an elastic foundation".
+// term). The beam on its springs is the floating_ice_beam example's
+// (examples/floating_ice_beam/beam_on_foundation.hpp). docs/validation/fracture.md, "Ice on an
+// elastic foundation".
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <string>
 #include <vector>
 
-#include "mpsfsi/fracture/fracture_process.hpp"
+#include "floating_ice_beam/beam_on_foundation.hpp"
 #include "mpsfsi/scenes/floating_ice_beam.hpp"
-#include "mpsfsi/solid/elastic_solver.hpp"
-#include "mpsfsi/solid/fragments.hpp"
 #include "mpsfsi/solid/rigid_obstacle.hpp"
 
 using namespace mpsfsi;
 
 namespace {
 
-using IceSolver = ElasticSolver<2, BrittleSolidPolicies<2>>;
+using floating_ice::BeamOnFoundation;
+using floating_ice::BreakResult;
 
 // The scene's ice: E = 60 MPa, nu = 0.3, 917 kg/m3, sigma_f = 30 kPa, h = 40 mm, plane stress;
 // 1 / lambda = 0.60 m, pi / (4 lambda) = 0.472 m, P_f = 41.3 N/m.
 scenes::FloatingIceBeam ice_scene() { return scenes::FloatingIceBeam{}; }
 
-// The ice beam of the scene, its bottom row on springs k l0 (the foundation k = rho_w g over the
-// row's share l0 of the bottom face), its end column loaded by P(t) downwards, no gravity (weight
-// and buoyancy cancel at the draft; the springs carry the change of buoyancy). Mass damping at
-// the lowest frequency of a beam on a Winkler foundation, omega_0 = sqrt(k / (rho_i h)) (the
-// cut-off of its flexural waves), critically damps that mode and makes every other one decay at
-// omega_0 (mass damping c gives each underdamped mode the decay rate c / 2): the beam settles
-// within a few 1 / omega_0 = 61 ms of any change of load.
-class BeamOnFoundation {
- public:
-  // With `hydrostatic_limits` a spring's force stays between the column's weight downwards (its
-  // bottom out of the water: lifted by more than the draft) and the buoyancy of its whole
-  // thickness minus the weight (its top under water): Archimedes for an upright column.
-  BeamOnFoundation(const scenes::FloatingIceBeam& scene, double l0, bool can_fail, bool hydrostatic_limits = false)
-      : scene_(scene), l0_(l0), solver_(make_solver(scene, l0, can_fail)), limits_(hydrostatic_limits) {
-    const auto& x = solver_.reference_positions();
-    const double yb = scene.beam_bottom(l0);
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      if (x[i][1] < yb + l0) bottom_.push_back(i);
-      if (x[i][0] < l0) end_.push_back(i);
-    }
-    columns_ = static_cast<std::size_t>(std::lround(scene.beam_length_for(l0) / l0));
-    // The springs are a distributed traction on the bottom face, which the failure check reads on
-    // the surface; the end column carries the end load, a concentrated one.
-    for (const auto i : bottom_)
-      if (x[i][0] >= l0) solver_.mark_distributed_load(i);
-  }
-
-  // Steps to time t with the end load P(time) (N per unit width, downwards).
-  template <class Load>
-  void run_to(double t, Load load) {
-    while (solver_.time() < t - 1e-12) {
-      apply(load(solver_.time()));
-      solver_.step();
-    }
-  }
-
-  // Deflection (m, downwards) of each column, the mean over its particles, at the column's x.
-  std::vector<double> deflection() const {
-    std::vector<double> w(columns_, 0.0);
-    std::vector<int> count(columns_, 0);
-    const auto& x = solver_.particles().positions();
-    const auto& x0 = solver_.reference_positions();
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      const auto c = static_cast<std::size_t>(x0[i][0] / l0_);
-      w[c] -= x[i][1] - x0[i][1];
-      ++count[c];
-    }
-    for (std::size_t c = 0; c < columns_; ++c) w[c] /= count[c];
-    return w;
-  }
-  double column_x(std::size_t c) const { return (static_cast<double>(c) + 0.5) * l0_; }
-
-  // The foundation's force on the beam (N per unit width, upwards).
-  double foundation_force() const {
-    double f = 0;
-    for (const auto i : bottom_) f += spring(i);
-    return f;
-  }
-
-  IceSolver& solver() { return solver_; }
-
- private:
-  static IceSolver make_solver(const scenes::FloatingIceBeam& scene, double l0, bool can_fail) {
-    std::vector<std::size_t> end_column;
-    auto set = scene.beam_particles(l0, end_column);
-    SolidParameters<2> p;
-    p.l0 = l0;
-    p.density = scene.ice_density;
-    p.youngs_modulus = scene.youngs_modulus;
-    p.poisson_ratio = scene.poisson_ratio;
-    p.plane_model = scene.plane_strain ? PlaneModel::plane_strain : PlaneModel::plane_stress;
-    p.tensile_strength = can_fail ? scene.tensile_strength : 1e30;  // out of reach: nothing fails
-    p.damping = 2 * std::sqrt(scene.foundation_modulus() / (scene.ice_density * scene.thickness));
-    return IceSolver(std::move(set), p);
-  }
-
-  // Upward spring force of a bottom particle: k l0 times its deflection.
-  double spring(std::size_t i) const {
-    double w = solver_.reference_positions()[i][1] - solver_.particles().positions()[i][1];
-    if (limits_) w = std::clamp(w, -scene_.draft(), scene_.thickness - scene_.draft());
-    return scene_.foundation_modulus() * l0_ * w;
-  }
-
-  void apply(double P) {
-    auto& f = solver_.external_force();
-    for (auto& fi : f) fi.setZero();
-    for (const auto i : bottom_) f[i][1] += spring(i);
-    for (const auto i : end_) f[i][1] -= P / static_cast<double>(end_.size());
-  }
-
-  scenes::FloatingIceBeam scene_;
-  double l0_;
-  IceSolver solver_;
-  std::vector<std::size_t> bottom_, end_;
-  std::size_t columns_ = 0;
-  bool limits_ = false;
-};
-
-struct DeflectionResult {
-  double end_error = 0;      // (w - w_ref) / w_ref at the end column
-  double profile_rms = 0;    // RMS of w - w_ref over 0 <= x <= 3 / lambda, relative to w_ref at the end column
-  double balance_error = 0;  // (foundation force - P) / P
-};
-
 // P ramped to half of P_f over 0.3 s (about 5 / omega_0), held to 0.8 s: the transient has
 // decayed by e^(-omega_0 0.5 s) (1 + omega_0 0.5 s) = 2.5e-3.
-DeflectionResult settled_deflection(double l0) {
+floating_ice::DeflectionCheck settled_deflection(double l0) {
   const auto scene = ice_scene();
   const double P = 0.5 * scene.failure_load();
   BeamOnFoundation beam(scene, l0, false);
   beam.run_to(0.8, [&](double t) { return P * std::min(1.0, t / 0.3); });
-  const auto w = beam.deflection();
-  DeflectionResult r;
-  const double w_end = scene.deflection(P, beam.column_x(0));
-  r.end_error = w[0] / w_end - 1;
-  double sum = 0;
-  int n = 0;
-  for (std::size_t c = 0; beam.column_x(c) <= 3 / scene.lambda(); ++c, ++n) {
-    const double d = w[c] - scene.deflection(P, beam.column_x(c));
-    sum += d * d;
-  }
-  r.profile_rms = std::sqrt(sum / n) / w_end;
-  r.balance_error = beam.foundation_force() / P - 1;
+  const auto r = floating_ice::check_deflection(beam, scene, P);
   MESSAGE("beam on a Winkler foundation, h/l0 = " << scene.thickness / l0 << ", P = " << P << " N/m: end deflection "
-                                                  << w[0] << " m vs Hetenyi " << w_end << " (" << 100 * r.end_error
-                                                  << " %), profile RMS to 3/lambda " << 100 * r.profile_rms
+                                                  << r.w[0] << " m vs Hetenyi " << scene.deflection(P, r.x[0]) << " ("
+                                                  << 100 * r.end_error << " %), profile RMS to 3/lambda "
+                                                  << 100 * r.profile_rms
                                                   << " % of the end deflection, foundation force / P - 1 = "
                                                   << r.balance_error);
   return r;
-}
-
-// What a run to the first break leaves: the first failure, the load then and the pieces.
-struct BreakResult {
-  Vec<2> first_failure = Vec<2>::Zero();  // reference position of the first failed particle
-  double first_failure_time = -1;
-  Vec<2> load_at_failure = Vec<2>::Zero();  // the load on the ice then (N/m)
-  std::size_t pieces = 0;                   // fragments of more than 10 particles
-  std::size_t small_fragment_particles = 0;  // particles in fragments of 10 or fewer
-  double far_piece_start = 0;  // the smallest reference x of the largest piece (the far sheet)
-  std::size_t failures = 0, cut_bonds = 0;
-  std::size_t particles = 0;
-  double wall_seconds = 0;
-  // The end load's ligament, the bottom particle of the first failure's column, at the stop: its
-  // sigma_xx at its centre and the criterion's value of the stress its check read.
-  double ligament_centre_sigma_xx = 0, ligament_criterion_stress = 0;
-};
-
-BreakResult read_break(const IceSolver& s, std::chrono::steady_clock::time_point wall) {
-  BreakResult r;
-  r.particles = s.particles().size();
-  r.failures = s.failure_events();
-  r.cut_bonds = s.cut_bonds();
-  if (r.failures == 0) return r;
-  r.first_failure = s.reference_positions()[s.failure_log().front().particle];
-  r.first_failure_time = s.first_failure_time();
-  const auto fragments = find_fragments(s.bonds());
-  r.pieces = fragments.count_larger_than(10);
-  const auto largest = static_cast<std::size_t>(
-      std::max_element(fragments.sizes.begin(), fragments.sizes.end()) - fragments.sizes.begin());
-  r.far_piece_start = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < fragments.label.size(); ++i) {
-    const auto f = static_cast<std::size_t>(fragments.label[i]);
-    if (fragments.sizes[f] <= 10) ++r.small_fragment_particles;
-    if (f == largest) r.far_piece_start = std::min(r.far_piece_start, s.reference_positions()[i][0]);
-  }
-  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
-  return r;
-}
-
-// The bottom particle of the first failure's column (the ligament the end-load crack stops at).
-std::size_t ligament_particle(const IceSolver& s, const scenes::FloatingIceBeam& scene, double l0) {
-  const auto& X = s.reference_positions();
-  const double column = X[s.failure_log().front().particle][0], bottom = scene.beam_bottom(l0);
-  std::size_t ligament = X.size();
-  for (std::size_t i = 0; i < X.size(); ++i)
-    if (std::abs(X[i][0] - column) < l0 / 2 && X[i][1] < bottom + l0) ligament = i;
-  return ligament;
 }
 
 // P rises to 0.9 P_f over 0.3 s, is held to 0.6 s and then rises by 0.2 P_f per second, so that
@@ -224,10 +62,10 @@ const BreakResult& end_load_break() {
     const auto load = [&](double t) { return end_load(scene, t); };
     while (s.time() < 2.0 && !(s.first_failure_time() >= 0 && s.time() > s.first_failure_time() + 0.1))
       beam.run_to(s.time() + 0.01, load);
-    BreakResult r = read_break(s, wall);
+    BreakResult r = floating_ice::read_break(s, wall);
     if (r.failures == 0) return r;
     r.load_at_failure = Vec<2>(0, -load(r.first_failure_time));
-    const std::size_t ligament = ligament_particle(s, scene, scene.thickness / 8);
+    const std::size_t ligament = floating_ice::ligament_particle(s, scene, scene.thickness / 8);
     if (ligament < s.particles().size()) {
       r.ligament_centre_sigma_xx = s.stresses()[ligament](0, 0);
       r.ligament_criterion_stress = s.criterion_stresses()[ligament];
@@ -265,13 +103,13 @@ const ReleaseResult& ligament_cut_release() {
     if (s.failure_events() == 0) return r;
     const auto& X = s.reference_positions();
     const double column = X[s.failure_log().front().particle][0];
-    const std::size_t ligament = ligament_particle(s, scene, l0);
+    const std::size_t ligament = floating_ice::ligament_particle(s, scene, l0);
     if (ligament == X.size()) return r;
     const std::size_t before = s.failure_events();
     r.cut_time = s.time();
     s.impose_crack(ligament, Vec<2>(1, 0));
     beam.run_to(r.cut_time + 0.05, load);
-    r.after = read_break(s, wall);
+    r.after = floating_ice::read_break(s, wall);
     r.column = r.nearest_end_reached = column;
     r.failures_after_cut = s.failure_events() - before;
     for (std::size_t k = before; k < s.failure_log().size(); ++k) {
@@ -317,7 +155,7 @@ const BreakResult& slope_break() {
       beam.run_to(s.time() + 0.002, [](double) { return 0.0; });
       if (s.first_failure_time() < 0) on_ice = -s.obstacle(k).load();  // H along +x, V along +y
     }
-    BreakResult r = read_break(s, wall);
+    BreakResult r = floating_ice::read_break(s, wall);
     r.load_at_failure = on_ice;
     return r;
   }();
