@@ -175,9 +175,6 @@ struct BreakResult {
   std::size_t failures = 0, cut_bonds = 0;
   std::size_t particles = 0;
   double wall_seconds = 0;
-  // The end load's ligament, the bottom particle of the first failure's column, at the stop: its
-  // sigma_xx at its centre and the criterion's value of the stress its check read.
-  double ligament_centre_sigma_xx = 0, ligament_criterion_stress = 0;
 };
 
 inline BreakResult read_break(const IceSolver& s, std::chrono::steady_clock::time_point wall) {
@@ -200,16 +197,6 @@ inline BreakResult read_break(const IceSolver& s, std::chrono::steady_clock::tim
     if (f == largest) r.far_piece_start = std::min(r.far_piece_start, s.reference_positions()[i][0]);
   }
   return r;
-}
-
-// The bottom particle of the first failure's column (the ligament the end-load crack stops at).
-inline std::size_t ligament_particle(const IceSolver& s, const scenes::FloatingIceBeam& scene, double l0) {
-  const auto& X = s.reference_positions();
-  const double column = X[s.failure_log().front().particle][0], bottom = scene.beam_bottom(l0);
-  std::size_t ligament = X.size();
-  for (std::size_t i = 0; i < X.size(); ++i)
-    if (std::abs(X[i][0] - column) < l0 / 2 && X[i][1] < bottom + l0) ligament = i;
-  return ligament;
 }
 
 // The example's run (floating_ice_beam): one beam, two phases.

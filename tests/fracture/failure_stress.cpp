@@ -96,6 +96,97 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a cut-out neighbour weighs the part
   CHECK(read_at_i() == doctest::Approx(1e6 * (self + w_k) / (self + all)).epsilon(1e-12));
 }
 
+// A surface particle reads the fitted field at the outer end of its cell, X + (l0/2) n, or where
+// the caller's inner_end(outer, inner) says so at the inner end, X - (l0/2) n. A bar bent by
+// u_x = -k X (Y - Y_mid) (quadratic: the fit reproduces it) has its top face in compression, less
+// at the inner end, and its bottom face in tension, more at the outer end: choosing the larger
+// sigma_1 reads the top face's inner end and the bottom face's outer end; by default both read
+// their outer ends. Each read is the SVK stress of the exact gradient at that point. A top
+// particle beside a cut-out one of its face reads its outer end.
+TEST_CASE_TEMPLATE("fracture.failure_stress: a surface particle reads the end of its cell its caller chooses", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  const double l0 = 0.01, re = 2.1 * l0, k = 0.03;
+  Vec<Dim> upper = Vec<Dim>::Constant(0.06);
+  upper[0] = 0.2;
+  const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
+  const auto& reference = block.positions();
+  const std::size_t n = reference.size();
+  BondList<Dim> bonds;
+  bonds.template build<KoshizukaWeight>(reference, std::vector<std::int32_t>(n, 0), re);
+  double lowest = reference[0][1], highest = reference[0][1];
+  for (const auto& p : reference) lowest = std::min(lowest, p[1]), highest = std::max(highest, p[1]);
+  const double middle = 0.5 * (lowest + highest);
+  VecArray<Dim, double> x = reference;
+  for (auto& p : x) p[0] -= k * p[0] * (p[1] - middle);
+  const auto gradient = [&](const Vec<Dim>& at) {
+    Mat<Dim> f = Mat<Dim>::Identity();
+    f(0, 0) -= k * (at[1] - middle);
+    f(0, 1) -= k * at[0];
+    return f;
+  };
+  DeformationFit<Dim, double> fit;
+  fit.build(bonds, l0);
+  typename FailureStressReadout<Dim>::Settings settings;
+  settings.l0 = l0;
+  settings.lame = {6e8, 4e8};
+  settings.average = false;
+  for (std::size_t p = 0; p < n; ++p) {
+    double sum = 0;
+    for (Offset b = bonds.begin(p); b < bonds.end(p); ++b) sum += bonds.weight(b);
+    settings.n0 = std::max(settings.n0, sum);
+  }
+  const MatArray<Dim, double> point(n, Mat<Dim>::Zero());
+  const auto unloaded = [](std::size_t) { return false; };
+  const auto sigma_1 = [](const Mat<Dim>& t) {
+    Vec<Dim> direction;
+    return MaxPrincipalStress::principal<Dim, double>(t, direction);
+  };
+  const auto larger = [&](const Mat<Dim>& outer, const Mat<Dim>& inner) { return sigma_1(inner) > sigma_1(outer); };
+  FailureStressReadout<Dim> by_default, chosen;
+  const MatArray<Dim, double> outer_read = by_default.read(point, x, reference, bonds, &fit, unloaded, settings);
+  const MatArray<Dim, double> chosen_read = chosen.read(point, x, reference, bonds, &fit, unloaded, settings, larger);
+
+  std::size_t top = 0, bottom = 0;
+  for (std::size_t p = 0; p < n; ++p) {
+    const Vec<Dim>& at = reference[p];
+    bool inside_edges = at[0] > 0.06 && at[0] < 0.14;  // away from the end faces and, in 3D, the side faces
+    for (int d = 2; d < Dim; ++d) inside_edges = inside_edges && at[d] > 0.015 && at[d] < 0.045;
+    const bool on_top = at[1] == highest, on_bottom = at[1] == lowest;
+    if (!inside_edges || !(on_top || on_bottom)) continue;
+    CAPTURE(p);
+    Vec<Dim> half_cell = Vec<Dim>::Zero();
+    half_cell[1] = on_top ? 0.5 * l0 : -0.5 * l0;
+    const Mat<Dim> outer = detail::cauchy_from_svk(gradient(at + half_cell), settings.lame);
+    const Mat<Dim> inner = detail::cauchy_from_svk(gradient(at - half_cell), settings.lame);
+    REQUIRE((sigma_1(inner) > sigma_1(outer)) == on_top);
+    const double scale = outer.norm();
+    CHECK((outer_read[p] - outer).norm() < 1e-6 * scale);
+    CHECK((chosen_read[p] - (on_top ? inner : outer)).norm() < 1e-6 * scale);
+    (on_top ? top : bottom) += 1;
+  }
+  CHECK(top > 0);
+  CHECK(bottom > 0);
+
+  // Beside a cut-out particle of its face (a crack's mouth) a top particle reads its outer end.
+  std::size_t beside = n;
+  for (std::size_t p = 0; p < n && beside == n; ++p)
+    if (reference[p][1] == highest && reference[p][0] > 0.09 && reference[p][0] < 0.11 &&
+        (Dim == 2 || (reference[p][Dim - 1] > 0.02 && reference[p][Dim - 1] < 0.04)))
+      beside = p;
+  REQUIRE(beside < n);
+  std::size_t mouth = n;
+  for (Offset b = bonds.begin(beside); b < bonds.end(beside); ++b) {
+    const auto k = static_cast<std::size_t>(bonds.neighbor(b));
+    if (reference[k][1] == highest && reference[k][0] > reference[beside][0]) mouth = k;
+  }
+  REQUIRE(mouth < n);
+  chosen.mark_cut_out(mouth, n);
+  const MatArray<Dim, double> after_cut = chosen.read(point, x, reference, bonds, &fit, unloaded, settings, larger);
+  CHECK(std::memcmp(after_cut[beside].data(), outer_read[beside].data(), sizeof(double) * Dim * Dim) == 0);
+  CHECK((after_cut[beside] - chosen_read[beside]).norm() > 0);
+}
+
 // The screened read averages only where the highest bound over a particle's neighbourhood reaches
 // the strength. A bar in tension rising from 0 at the left end to 2 MPa at the right, with noise,
 // read at the centres and, with the fit, at the surface (a displacement that stretches the bar as
@@ -104,8 +195,9 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a cut-out neighbour weighs the part
 // (the screen follows them through the bonds); and out of reach (nothing is averaged). Where
 // read_screened() computed a tensor it is read()'s to the bit, where it did not sigma_1 of
 // read()'s is below the strength (the screen is sound), and complete() fills in read()'s tensors
-// to the bit, also after bonds are cut before the read; a cut between the read and complete() is
-// refused. A NaN sample anywhere screens nothing out.
+// to the bit, also after bonds are cut before the read; surface particles read the end of their
+// cell with the larger sigma_1 in both reads. A cut between the read and complete() is refused.
+// A NaN sample anywhere screens nothing out.
 TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read where failure is possible", T,
                    std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
   constexpr int Dim = T::value;
@@ -152,6 +244,8 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
   const auto same_bits = [](const Mat<Dim>& a, const Mat<Dim>& b) {
     return std::memcmp(a.data(), b.data(), sizeof(double) * Dim * Dim) == 0;
   };
+  // Surface particles read the end of their cell with the larger sigma_1, in both reads.
+  const auto larger_end = [&](const Mat<Dim>& outer, const Mat<Dim>& inner) { return sigma_1(inner) > sigma_1(outer); };
 
   for (const bool at_surface : {false, true}) {
     const DeformationFit<Dim, double>* const fitted = at_surface ? &fit : nullptr;
@@ -166,7 +260,8 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
         screened.read(point, x, reference, cut, fitted, unloaded, settings);
         if (cut_some)  // every third particle's first bond, cut after the first read
           for (std::size_t i = 0; i < n; i += 3) cut.cut(cut.begin(i));
-        const MatArray<Dim, double> expected = full.read(point, x, reference, cut, fitted, unloaded, settings);
+        const MatArray<Dim, double> expected =
+            full.read(point, x, reference, cut, fitted, unloaded, settings, larger_end);
         if (at_surface && !cut_some) {  // the surface is read outside
           FailureStressReadout<Dim> centres;
           const auto& centre_read = centres.read(point, x, reference, cut, nullptr, unloaded, settings);
@@ -179,7 +274,7 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
         const double strength = which == 0 ? 1.6e6 : which == 1 ? highest * (1 - 1e-3) : 1e30;
         const auto may_fail = [&](std::size_t, double b) { return !(b < strength); };
         const auto& got = screened.read_screened(point, x, reference, cut, fitted, unloaded, settings, bound, may_fail,
-                                                 strength);
+                                                 strength, larger_end);
         std::size_t left_out = 0, differ = 0, unsound = 0, may_fail_count = 0;
         for (std::size_t i = 0; i < n; ++i) {
           may_fail_count += sigma_1(expected[i]) >= strength ? 1 : 0;
@@ -196,7 +291,7 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
         FailureStressReadout<Dim> dense;
         dense.read(point, x, reference, bonds, fitted, unloaded, settings);
         dense.read_screened(point, x, reference, cut, fitted, unloaded, settings, bound, may_fail,
-                            -std::numeric_limits<double>::infinity());
+                            -std::numeric_limits<double>::infinity(), larger_end);
         std::size_t other_mask = 0;
         for (std::size_t i = 0; i < n; ++i) other_mask += screened.evaluated(i) == dense.evaluated(i) ? 0 : 1;
         CHECK(other_mask == 0);
@@ -209,7 +304,7 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
         }
         CHECK(differ == 0);
         CHECK(unsound == 0);
-        screened.complete(point, cut);
+        screened.complete(point, cut, larger_end);
         differ = 0;
         for (std::size_t i = 0; i < n; ++i) differ += same_bits(got[i], expected[i]) ? 0 : 1;
         CHECK(differ == 0);
@@ -229,6 +324,14 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
     while (intact < bonds.end(1) && !bonds.intact(intact)) ++intact;
     REQUIRE(intact < bonds.end(1));
     bonds.cut(intact);
+    CHECK_THROWS_AS(screened.complete(point, bonds), InvalidInput);
+  }
+
+  // A read whose ends are chosen by a caller's inner_end is completed with it, not without.
+  {
+    FailureStressReadout<Dim> screened;
+    screened.read_screened(point, x, reference, bonds, &fit, unloaded, settings, bound, may_fail, 1e30, larger_end);
+    REQUIRE(screened.screened_out() > 0);
     CHECK_THROWS_AS(screened.complete(point, bonds), InvalidInput);
   }
 

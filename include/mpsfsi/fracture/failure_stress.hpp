@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
@@ -38,7 +39,15 @@ inline namespace MPSFSI_ABI {
 //   stress model): a particle on the body's outer surface (outward normal n_i from the bonds at
 //   the first read, so imposed notches count and crack faces do not) reads its fitted field at
 //   X_i + (l0/2) n_i, on the continuum's surface, instead of at its centre l0/2 inside it (the
-//   first-order error in l0/h that made the bending study's peak load depend on l0). Averaged,
+//   first-order error in l0/h that made the bending study's peak load depend on l0). The caller
+//   may let it read the other end of its cell, X_i - (l0/2) n_i, instead (`inner_end(outer,
+//   inner)`, given both tensors; FractureProcess: where the criterion's value is larger there):
+//   the criterion applies to all of the particle's material, the fitted gradient is linear
+//   across the cell, and a convex criterion is largest at one of its two ends. A face in
+//   bending tension reads its outer end; the last particle of a ligament, which a crack has
+//   reached from the opposite face, reads the end toward the crack tip (docs/theory.md, 5.4).
+//   Only where the face is whole around the particle (face_whole). read_screened() chooses only
+//   for the samples its averages read. Averaged,
 //   it is averaged only along its face (bonded surface particles with normals within 25
 //   degrees, each read at its own surface point), so the read-out does not move inwards; and
 //   twice (a filter over +-4 l0 on a flat face): with one pass, the grid-scale release wave of
@@ -69,13 +78,21 @@ class FailureStressReadout {
     bool average = true;
   };
 
+  // Reads at the outer end of a surface particle's cell, whatever the inner end holds.
+  struct OuterEnd {
+    bool operator()(const mat_type&, const mat_type&) const { return false; }
+  };
+
   // `point`: the stress at the particle centres; `fit`: the stress model's fit, or nullptr to
-  // read every particle at its centre; `loaded(i)`: whether particle i carries a load.
-  template <class Loaded>
+  // read every particle at its centre; `loaded(i)`: whether particle i carries a load;
+  // `inner_end(outer, inner)`: whether a particle read at the surface reads the inner end of its
+  // cell (see above).
+  template <class Loaded, class InnerEnd = OuterEnd>
   const MatArray<Dim, double>& read(const MatArray<Dim, double>& point, const VecArray<Dim, double>& x,
                                     const VecArray<Dim, double>& reference, const BondList<Dim, double>& bonds,
-                                    const fit_type* fit, Loaded&& loaded, const Settings& s) {
-    const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s);
+                                    const fit_type* fit, Loaded&& loaded, const Settings& s,
+                                    InnerEnd&& inner_end = InnerEnd{}) {
+    const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s, inner_end, true);
     if (!s.average) return sampled;
     average_pass(point, bonds, sampled, false, averaged_, nullptr);
     if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, nullptr);
@@ -91,13 +108,16 @@ class FailureStressReadout {
   // second pass) bounds its read. Where that rules failure out, the read is left for complete():
   // evaluated(i) says where the returned tensors hold. complete(), given the same `point` and
   // `bonds` as they were at this call (FractureProcess completes before anything changes them),
-  // gives to the bit the tensors read() would have.
-  template <class Loaded, class Bound, class MayFail>
+  // gives to the bit the tensors read() would have (given the same `inner_end`). A surface
+  // sample whose end is not chosen yet is bounded by the higher of its two ends' bounds; the end
+  // is chosen where an average reads the sample, the rest by complete().
+  template <class Loaded, class Bound, class MayFail, class InnerEnd = OuterEnd>
   const MatArray<Dim, double>& read_screened(const MatArray<Dim, double>& point, const VecArray<Dim, double>& x,
                                              const VecArray<Dim, double>& reference,
                                              const BondList<Dim, double>& bonds, const fit_type* fit, Loaded&& loaded,
-                                             const Settings& s, Bound&& bound, MayFail&& may_fail, double floor) {
-    const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s);
+                                             const Settings& s, Bound&& bound, MayFail&& may_fail, double floor,
+                                             InnerEnd&& inner_end = InnerEnd{}) {
+    const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s, inner_end, !s.average);
     if (!s.average) return sampled;
     const std::size_t n = point.size();
     sample_bound_.resize(n);
@@ -114,9 +134,16 @@ class FailureStressReadout {
     for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(n); ++kk) {
       const auto k = static_cast<std::size_t>(kk);
       const bool outside = at_surface_ && read_outside_[k];
+      const bool both_ends = outside && !unchosen_.empty() && unchosen_[k];
       const double centre_bound = bound(point[k]), centre_norm = point[k].norm();
-      const double surface_bound = outside ? bound(sampled[k]) : centre_bound;
-      const double surface_norm = outside ? sampled[k].norm() : centre_norm;
+      double surface_bound = outside ? bound(sampled[k]) : centre_bound;
+      double surface_norm = outside ? sampled[k].norm() : centre_norm;
+      if (both_ends) {
+        const double inner_bound = bound(inner_stress_[k]), inner_norm = inner_stress_[k].norm();
+        // NaN stays NaN (std::max keeps its first argument when either is NaN).
+        surface_bound = std::isnan(inner_bound) ? inner_bound : std::max(surface_bound, inner_bound);
+        surface_norm = std::isnan(inner_norm) ? inner_norm : std::max(surface_norm, inner_norm);
+      }
       // NaN if any of them is (or if infinities of both signs meet: screened off as well).
       not_a_number |= std::isnan(centre_bound + surface_bound + centre_norm + surface_norm) ? 1 : 0;
       sample_bound_[k] = std::max(centre_bound, surface_bound);
@@ -161,6 +188,7 @@ class FailureStressReadout {
         }
       }
     }
+    choose_read_ends(bonds, inner_end, &first_pass_needed());
     average_pass(point, bonds, sampled, false, averaged_, &first_pass_needed());
     if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, &needed_);
     pending_ = true;
@@ -172,13 +200,19 @@ class FailureStressReadout {
   // complete()).
   bool evaluated(std::size_t i) const { return !pending_ || needed_[i] != 0; }
 
-  // Fills the tensors read_screened() left out, from the same `point` and `bonds` it was given.
-  // Throws InvalidInput if a bond has been cut since: the read would then mix two states (a
-  // caller that cuts bonds completes the read first). The read stays pending until the next.
-  void complete(const MatArray<Dim, double>& point, const BondList<Dim, double>& bonds) {
+  // Fills the tensors read_screened() left out, from the same `point` and `bonds` it was given,
+  // and with the same `inner_end`. Throws InvalidInput if a bond has been cut since: the read
+  // would then mix two states (a caller that cuts bonds completes the read first). The read
+  // stays pending until the next.
+  template <class InnerEnd = OuterEnd>
+  void complete(const MatArray<Dim, double>& point, const BondList<Dim, double>& bonds,
+                InnerEnd&& inner_end = InnerEnd{}) {
     if (!pending_) return;
     if (bonds.num_cut() != cuts_at_read_)
       detail::throw_invalid("FailureStressReadout::complete", "bonds were cut after the read it completes");
+    if (!unchosen_.empty() && std::is_same_v<std::decay_t<InnerEnd>, OuterEnd>)
+      detail::throw_invalid("FailureStressReadout::complete", "the read it completes was given an inner_end; pass it");
+    choose_read_ends(bonds, inner_end, nullptr);
     average_pass(point, bonds, at_surface_ ? surface_stress_ : point, false, averaged_, &first_pass_needed(), true);
     if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, &needed_, true);
     pending_ = false;
@@ -236,14 +270,33 @@ class FailureStressReadout {
     return read_outside_[k] != 0 && normal_[i].dot(normal_[k]) >= kSameFace;
   }
 
+  // Whether particle i's face is whole around it: no bond to a particle of its face (loaded or
+  // not) cut since the first read, and no such particle cut out. Beside a crack's mouth the
+  // inner end of the cell reads the field beside the crack tip, not the face's, and only the
+  // outer end is read there.
+  bool face_whole(const BondList<Dim, double>& bonds, std::size_t i) const {
+    for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const auto k = static_cast<std::size_t>(bonds.neighbor(b));
+      if (!on_surface_[k] || normal_[i].dot(normal_[k]) < kSameFace) continue;
+      const bool cut_since = bonds.beta(b) == 0 && initial_weight_[static_cast<std::size_t>(b)] != 0;
+      if (cut_since || (k < cut_out_.size() && cut_out_[k] != 0)) return false;
+    }
+    return true;
+  }
+
   // The surface samples (at the centre where not read outside), and what every read starts from.
-  template <class Loaded>
+  // With an `inner_end`, both ends' tensors of every particle read outside, the end chosen now
+  // (`choose`) or left for choose_read_ends().
+  template <class Loaded, class InnerEnd>
   const MatArray<Dim, double>& sample(const MatArray<Dim, double>& point, const VecArray<Dim, double>& x,
                                       const VecArray<Dim, double>& reference, const BondList<Dim, double>& bonds,
-                                      const fit_type* fit, Loaded&& loaded, const Settings& s) {
+                                      const fit_type* fit, Loaded&& loaded, const Settings& s, InnerEnd&& inner_end,
+                                      bool choose) {
+    constexpr bool two_ends = !std::is_same_v<std::decay_t<InnerEnd>, OuterEnd>;
     const std::size_t n = x.size();
     const bool at_surface = fit != nullptr;
     pending_ = false;
+    unchosen_.clear();
     // The settings complete() averages with again, and what the read returns.
     self_weight_ = s.self_weight;
     at_surface_ = at_surface;
@@ -259,16 +312,53 @@ class FailureStressReadout {
       if (normal_.size() != n) structure_normals(bonds, reference, s.n0, kSurfaceThreshold, normal_, on_surface_);
       read_outside_.resize(n);
       surface_stress_.resize(n);
+      if (two_ends) inner_stress_.resize(n);
+      if (two_ends && !choose) unchosen_.resize(n);
       MPSFSI_OMP(parallel for schedule(static))
       for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
         const auto i = static_cast<std::size_t>(ii);
         read_outside_[i] = on_surface_[i] && !loaded(i) ? 1 : 0;
-        surface_stress_[i] = read_outside_[i] ? detail::cauchy_from_svk(
-                                                    fit->gradient_at(fit->affine(x, bonds, i), 0.5 * s.l0 * normal_[i]), s.lame)
-                                              : point[i];
+        if (!unchosen_.empty()) unchosen_[i] = 0;
+        if (!read_outside_[i]) {
+          surface_stress_[i] = point[i];
+          continue;
+        }
+        const auto affine = fit->affine(x, bonds, i);
+        const Vec<Dim, double> half_cell = 0.5 * s.l0 * normal_[i];
+        surface_stress_[i] = detail::cauchy_from_svk(fit->gradient_at(affine, half_cell), s.lame);
+        if constexpr (two_ends) {
+          if (!face_whole(bonds, i)) continue;
+          inner_stress_[i] = detail::cauchy_from_svk(fit->gradient_at(affine, -half_cell), s.lame);
+          if (!choose)
+            unchosen_[i] = 1;
+          else if (inner_end(surface_stress_[i], inner_stress_[i]))
+            surface_stress_[i] = inner_stress_[i];
+        }
       }
     }
     return at_surface ? surface_stress_ : point;
+  }
+
+  // Chooses the end of every sample left unchosen that a first averaging pass marked in `only`
+  // reads (its own particle's or a bonded neighbour's), or, without `only`, of all of them.
+  template <class InnerEnd>
+  void choose_read_ends(const BondList<Dim, double>& bonds, InnerEnd&& inner_end,
+                        const std::vector<std::uint8_t>* only) {
+    if constexpr (!std::is_same_v<std::decay_t<InnerEnd>, OuterEnd>) {
+      if (unchosen_.empty()) return;
+      MPSFSI_OMP(parallel for schedule(static))
+      for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(unchosen_.size()); ++kk) {
+        const auto k = static_cast<std::size_t>(kk);
+        if (!unchosen_[k]) continue;
+        bool read = !only || (*only)[k];
+        for (Offset b = bonds.begin(k); b < bonds.end(k) && !read; ++b)
+          read = (*only)[static_cast<std::size_t>(bonds.neighbor(b))] != 0;
+        if (!read) continue;
+        if (inner_end(surface_stress_[k], inner_stress_[k])) surface_stress_[k] = inner_stress_[k];
+        unchosen_[k] = 0;
+      }
+      if (!only) unchosen_.clear();
+    }
   }
 
   // Which particles' first averaging pass read_screened() computed.
@@ -409,6 +499,8 @@ class FailureStressReadout {
   std::vector<double> initial_weight_;  // w of every bond at the first read (0 if already cut)
   std::vector<std::uint8_t> on_surface_, read_outside_;
   MatArray<Dim, double> surface_stress_, averaged_, smoothed_;
+  MatArray<Dim, double> inner_stress_;      // at the inner end of the cell, for a caller's inner_end
+  std::vector<std::uint8_t> unchosen_;      // samples whose end read_screened() has not chosen (or empty)
   std::vector<std::uint8_t> cut_out_;  // empty until the first CrackSide::slab failure
   // The settings of the last read (complete() averages with them again).
   double self_weight_ = 0;

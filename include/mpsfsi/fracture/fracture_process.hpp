@@ -135,9 +135,10 @@ class FractureProcess {
         return readout_.read_screened(
             s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout,
             [&](const Mat<Dim, double>& t) { return failure_.template upper_bound<Dim, double>(t); },
-            [&](std::size_t i, double bound) { return candidate(i) && !(bound < strength[i]); }, lowest_strength());
+            [&](std::size_t i, double bound) { return candidate(i) && !(bound < strength[i]); }, lowest_strength(),
+            larger_end());
       else
-        return readout_.read(s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout);
+        return readout_.read(s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout, larger_end());
     }();
     // With the model's upper bound, a particle whose bound is below its strength cannot fail and
     // its principal() is left for refresh_output(). That reads the tensors later, so only when
@@ -172,7 +173,7 @@ class FractureProcess {
       failing_.insert(failing_.end(), mine.begin(), mine.end());
     }
     if (failing_.empty()) return false;
-    readout_.complete(s.stresses, s.bonds);  // the read before the cuts, for the output field
+    readout_.complete(s.stresses, s.bonds, larger_end());  // the read before the cuts, for the output field
     std::sort(failing_.begin(), failing_.end(), [](const Failing& a, const Failing& b) {
       return a.sigma1 > b.sigma1 || (a.sigma1 == b.sigma1 && a.particle < b.particle);
     });
@@ -205,7 +206,7 @@ class FractureProcess {
   void refresh_output(ParticleSet<Dim>& set, const MatArray<Dim, double>& stresses,
                       const BondList<Dim, double>& bonds) {
     if (!deferred_) return;
-    readout_.complete(stresses, bonds);
+    readout_.complete(stresses, bonds, larger_end());
     const auto& sigma = *readout_.last_read();
     auto& read = set.field(failure_stress_);
     MPSFSI_OMP(parallel for schedule(static))
@@ -255,6 +256,18 @@ class FractureProcess {
   };
   Failure failure_;
   FieldHandle<double> strength_, failure_stress_;
+  // The end of its cell a particle read at the surface reads (FailureStressReadout;
+  // docs/theory.md, 5.4): the inner one where the criterion's value is larger there.
+  struct LargerEnd {
+    const Failure* failure;
+    bool operator()(const Mat<Dim, double>& outer, const Mat<Dim, double>& inner) const {
+      Vec<Dim, double> direction;
+      const double at_inner = failure->template principal<Dim, double>(inner, direction);
+      return at_inner > failure->template principal<Dim, double>(outer, direction);
+    }
+  };
+  LargerEnd larger_end() const { return {&failure_}; }
+
   FailureStressReadout<Dim> readout_;
   // Per particle, for the surface read-out: whether it has carried an external force, and of
   // which kind.
