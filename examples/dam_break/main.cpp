@@ -20,6 +20,7 @@
 #include <mpsfsi/scenes/dam_break.hpp>
 
 #include "common/case_options.hpp"
+#include "common/output_folder.hpp"
 #include "common/run_checkpoints.hpp"
 #include "output_state.hpp"
 
@@ -47,7 +48,7 @@ int run(const Options& o) {
   p.l0 = o.l0;
   p.dt = o.dt;
   FluidSolver<Dim> solver(scenes::dam_break<Dim>(a, 2 * a, 4 * a, 0.6, o.l0, Dim == 3 ? 0.1 : 0.0), p);
-  std::filesystem::create_directories(o.out);
+  mpsfsi_examples::make_output_folder(o.out);
   OutputState state;
   if (!o.restart.empty()) {
     read_checkpoint(o.restart, solver, state);
@@ -123,7 +124,7 @@ int main(int argc, char** argv) try {
   if (o.l0 == 0) o.l0 = o.dim == 2 ? 0.005 : 0.02;
   if (o.dt < 0) o.dt = o.dim == 2 ? 2e-4 : 0.0;
   if (cli.print_case_if_requested()) return 0;
-  std::filesystem::create_directories(o.out);
+  mpsfsi_examples::make_output_folder(o.out);
   cli.write_case(o.out);
   return o.dim == 2 ? run<2>(o) : run<3>(o);
 } catch (const mpsfsi::SimulationError& e) {

@@ -25,6 +25,7 @@
 #include <mpsfsi/scenes/dam_break.hpp>
 
 #include "common/case_options.hpp"
+#include "common/output_folder.hpp"
 #include "common/run_checkpoints.hpp"
 #include "output_state.hpp"
 
@@ -235,7 +236,7 @@ int run_main(int argc, char** argv) {
   std::string error;
   if (comm.rank() == 0) {
     try {
-      std::filesystem::create_directories(o.out);
+      mpsfsi_examples::make_output_folder(o.out);
       cli.write_case(o.out);
     } catch (const std::exception& e) {
       error = e.what();

@@ -28,6 +28,7 @@
 #include <mpsfsi/solid/elastic_solver.hpp>
 
 #include "common/case_options.hpp"
+#include "common/output_folder.hpp"
 #include "common/output_record.hpp"
 #include "common/run_checkpoints.hpp"
 #include "three_point_bending/bending_test.hpp"
@@ -174,7 +175,7 @@ RunSummary run(const Options& o, bool fracture, const std::string& dir) {
   if (fracture) fp.enclosed_region = EnclosedRegion::zero_pressure;
   FsiCoupler<FluidSolver<Dim>, ElasticSolver<Dim, Policies>, Scheme> c(std::move(droplet), fp, std::move(beam));
 
-  std::filesystem::create_directories(dir);
+  mpsfsi_examples::make_output_folder(dir);
   const Vec<Dim> tip0 = c.solid().particles().positions()[tip];
   OutputState state;
   if (!o.restart.empty()) {
@@ -348,7 +349,7 @@ int main(int argc, char** argv) try {
   }
   if (o.l0 == 0) o.l0 = o.dim == 2 ? 0.0025 : 0.005;
   if (cli.print_case_if_requested()) return 0;
-  std::filesystem::create_directories(o.out);
+  mpsfsi_examples::make_output_folder(o.out);
   cli.write_case(o.out);
   std::fprintf(stderr, "%s\n", ProgressReporter::legend());
   if (o.dim == 3)

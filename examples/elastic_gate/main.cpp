@@ -23,6 +23,7 @@
 #include <mpsfsi/solid/elastic_solver.hpp>
 
 #include "common/case_options.hpp"
+#include "common/output_folder.hpp"
 #include "common/output_record.hpp"
 #include "common/run_checkpoints.hpp"
 
@@ -63,7 +64,7 @@ int run(const Options& o) {
   if constexpr (Scheme::iterative) scheme.tolerance = o.tolerance;
   Coupler coupler(scene.fluid_particles<Dim>(o.l0), fp, std::move(gate), CouplingParameters{}, scheme);
 
-  std::filesystem::create_directories(o.out);
+  mpsfsi_examples::make_output_folder(o.out);
   mpsfsi_examples::OutputRecord state;  // rows: gate_tip.csv
   if (!o.restart.empty()) {
     read_checkpoint(o.restart, coupler, state);
@@ -156,7 +157,7 @@ int main(int argc, char** argv) try {
   if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
   if (o.l0 == 0) o.l0 = o.dim == 2 ? 0.001 : 0.0025;
   if (cli.print_case_if_requested()) return 0;
-  std::filesystem::create_directories(o.out);
+  mpsfsi_examples::make_output_folder(o.out);
   cli.write_case(o.out);
   return o.dim == 2 ? run_scheme<2>(o) : run_scheme<3>(o);
 } catch (const mpsfsi::SimulationError& e) {

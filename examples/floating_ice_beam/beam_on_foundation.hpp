@@ -25,6 +25,8 @@
 #include <mpsfsi/solid/elastic_solver.hpp>
 #include <mpsfsi/solid/fragments.hpp>
 
+#include "common/output_folder.hpp"
+
 namespace floating_ice {
 
 using namespace mpsfsi;
@@ -262,7 +264,7 @@ inline RunResult run(const scenes::FloatingIceBeam& scene, const RunOptions& o) 
   std::unique_ptr<CsvWriter> history;
   std::size_t frames = 0;
   if (!o.out.empty()) {
-    std::filesystem::create_directories(o.out);
+    mpsfsi_examples::make_output_folder(o.out);
     pvd = std::make_unique<PvdWriter>(o.out + "/ice.pvd");
     history = std::make_unique<CsvWriter>(
         o.out + "/history.csv", std::vector<std::string>{"t", "P", "end_deflection", "hetenyi_end_deflection",

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "common/case_options.hpp"
+#include "common/output_folder.hpp"
 #include "floating_ice_beam/beam_on_foundation.hpp"
 
 namespace {
@@ -51,7 +52,7 @@ int main(int argc, char** argv) try {
   run.out = o.no_output ? std::string() : o.out;
   run.progress = true;
   if (!run.out.empty()) {
-    std::filesystem::create_directories(run.out);
+    mpsfsi_examples::make_output_folder(run.out);
     cli.write_case(run.out);
   }
   const double l0 = o.thickness / o.rows;
@@ -76,12 +77,14 @@ int main(int argc, char** argv) try {
     } else {
       const bool top = scene.beam_bottom(l0) + scene.thickness - b.first_failure[1] < l0;
       std::printf("phase 2: first failure at t = %.4f s, x = %.4f m (%+.1f %% from pi/(4 lambda)), %s fibre, P = %.3f N/m "
-                  "(%+.1f %% of P_f); %zu failures, %zu bonds cut; %zu pieces of more than 10 particles%s, %zu particles "
+                  "(%+.1f %% of P_f); %zu failures, %zu bonds cut; %zu pieces of more than 10 particles, %zu particles "
                   "in smaller ones\n",
                   b.first_failure_time, b.first_failure[0], 100 * (b.first_failure[0] / x_f - 1), top ? "top" : "inner",
                   -b.load_at_failure[1], 100 * (-b.load_at_failure[1] / Pf - 1), b.failures, b.cut_bonds, b.pieces,
-                  b.pieces >= 2 ? "" : " (the bottom row holds the halves: docs/validation/fracture.md)",
                   b.small_fragment_particles);
+      if (b.pieces >= 2)
+        std::printf("phase 2: the far piece from x = %.4f m (%+.1f %% from pi/(4 lambda))\n", b.far_piece_start,
+                    100 * (b.far_piece_start / x_f - 1));
     }
   }
   std::printf("summary: end deflection %+.2f %%, profile RMS %.2f %%, balance %+.1e", 100 * d.end_error,
@@ -89,16 +92,17 @@ int main(int argc, char** argv) try {
   if (b.failures > 0)
     std::printf(", first failure x %+.1f %%, P %+.1f %%, pieces %zu", 100 * (b.first_failure[0] / x_f - 1),
                 100 * (-b.load_at_failure[1] / Pf - 1), b.pieces);
+  if (b.pieces >= 2) std::printf(", break x %+.1f %%", 100 * (b.far_piece_start / x_f - 1));
   std::printf("; %zu particles, %lld steps, %.1f s on %d threads\n", r.particles, r.steps, r.wall_seconds,
               mpsfsi::parallel::max_threads());
   if (!run.out.empty()) {
     mpsfsi::CsvWriter summary(run.out + "/summary.csv",
                               {"thickness", "l0", "beam_length", "lambda", "failure_load", "largest_moment_x", "end_error",
                                "profile_rms", "balance_error", "failures", "first_failure_x", "first_failure_y",
-                               "load_at_failure", "pieces", "wall_s"});
+                               "load_at_failure", "pieces", "far_piece_x", "wall_s"});
     summary.row({scene.thickness, l0, scene.beam_length_for(l0), scene.lambda(), Pf, x_f, d.end_error, d.profile_rms,
                  d.balance_error, static_cast<double>(b.failures), b.first_failure[0], b.first_failure[1],
-                 -b.load_at_failure[1], static_cast<double>(b.pieces), r.wall_seconds});
+                 -b.load_at_failure[1], static_cast<double>(b.pieces), b.far_piece_start, r.wall_seconds});
   }
   if (!run.out.empty())
     std::printf("wrote %s (case.yaml reruns this case); plot with python3 examples/floating_ice_beam/plot.py %s\n",

@@ -82,7 +82,11 @@ if (out / "failures.csv").exists():
     ax.set_aspect("equal")
     ax.set_xlabel("x from the loaded end (m)")
     ax.set_ylabel("y (m)")
-    ax.set_title(f"Failed particles (reference positions) in the beam (grey); pieces: {int(float(summary['pieces']))}")
+    pieces = int(float(summary["pieces"]))
+    title = f"Failed particles (reference positions); pieces: {pieces}"
+    if pieces >= 2:
+        title += f", the far one from x = {float(summary['far_piece_x']):.4f} m"
+    ax.set_title(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(out / "failures.png", dpi=120)
     print(f"wrote {out / 'failures.png'}")

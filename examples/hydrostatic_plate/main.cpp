@@ -37,6 +37,7 @@
 #endif
 
 #include "common/case_options.hpp"
+#include "common/output_folder.hpp"
 
 using namespace mpsfsi;
 
@@ -169,7 +170,7 @@ int run_alone(const scenes::HydrostaticPlate& scene, const Options& o) {
   const double y0 = plate.particles().positions()[middle][1];
   std::printf("plate alone, %zu particles, l0 = %g m, dt = %.3g s, to t = %g s\n", plate.particles().size(), o.l0,
               plate.dt(), o.end);
-  std::filesystem::create_directories(o.out);
+  mpsfsi_examples::make_output_folder(o.out);
   PvdWriter pvd(o.out + "/plate.pvd");
   CsvWriter csv(o.out + "/midspan.csv", {"t", "deflection"});
   Averager avg;
@@ -229,7 +230,7 @@ int run_coupled(const scenes::HydrostaticPlate& scene, const Options& o) {
               coupler.structure_offset(), coupler.solid().particles().size(), o.l0,
               o.max_dt > 0 ? "automatic up to " : "", o.max_dt > 0 ? o.max_dt : o.dt, o.end,
               o.ppe == "amg" ? "HypreAmgCg" : "SsorCg");
-  std::filesystem::create_directories(o.out);
+  mpsfsi_examples::make_output_folder(o.out);
   PvdWriter fluid_pvd(o.out + "/fluid.pvd"), plate_pvd(o.out + "/plate.pvd");
   CsvWriter csv(o.out + "/midspan.csv", {"t", "deflection", "load_over_weight", "iterations", "dt"});
   Averager avg;
@@ -329,7 +330,7 @@ int main(int argc, char** argv) try {
 #endif
   if (cli.print_case_if_requested()) return 0;
   if (o.analyse.empty()) {
-    std::filesystem::create_directories(o.out);
+    mpsfsi_examples::make_output_folder(o.out);
     cli.write_case(o.out);
   }
   scenes::HydrostaticPlate scene;

@@ -12,6 +12,7 @@
 #include <mpsfsi/mpsfsi.hpp>
 
 #include "common/case_options.hpp"
+#include "common/output_folder.hpp"
 
 using namespace mpsfsi;
 
@@ -119,7 +120,7 @@ int main(int argc, char** argv) try {
   std::printf("    Khayyer-Gotoh      %.3e\n", err_kg);
   std::printf("  lap p (exact 0)     max |lap p| l0 / (rho g) = %.3e\n", err_lap);
 
-  std::filesystem::create_directories(opt.out);
+  mpsfsi_examples::make_output_folder(opt.out);
   cli.write_case(opt.out);
   const std::string vtu = numbered_file_name("water", 0);
   write_vtu(opt.out + "/" + vtu, water);

@@ -19,6 +19,7 @@
 #include <mpsfsi/solid/elastic_solver.hpp>
 
 #include "common/case_options.hpp"
+#include "common/output_folder.hpp"
 
 using namespace mpsfsi;
 
@@ -46,7 +47,7 @@ int run(const Options& o) {
   ElasticSolver<Dim, Policies> solver(plate.particles<Dim>(l0, 4, clamped, tip), p);
   for (const auto i : clamped) solver.clamp(i);
   const double period = plate.period(Dim == 2), end = o.periods * period;
-  std::filesystem::create_directories(o.out);
+  mpsfsi_examples::make_output_folder(o.out);
   PvdWriter pvd(o.out + "/oscillating_plate.pvd");
   CsvWriter csv(o.out + "/oscillating_plate.csv", {"t", "tip_dy", "kinetic", "strain", "total"});
   ProgressReporter progress(end);
@@ -103,7 +104,7 @@ int main(int argc, char** argv) try {
   cli.add("--out", o.out, "output folder");
   if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
   if (cli.print_case_if_requested()) return 0;
-  std::filesystem::create_directories(o.out);
+  mpsfsi_examples::make_output_folder(o.out);
   cli.write_case(o.out);
   if (o.dim == 2) return o.model == "paper" ? run<2, PaperSolidPolicies<2>>(o) : run<2, SolidDefaults<2>>(o);
   return o.model == "paper" ? run<3, PaperSolidPolicies<3>>(o) : run<3, SolidDefaults<3>>(o);

@@ -26,6 +26,7 @@
 #include <mpsfsi/solid/elastic_solver.hpp>
 #include <mpsfsi/solid/fragments.hpp>
 
+#include "common/output_folder.hpp"
 #include "common/run_checkpoints.hpp"
 
 namespace bending {
@@ -340,7 +341,7 @@ Result run(const IceBeamCase& c, const Options& o) {
   std::unique_ptr<PvdWriter> pvd;
   LoopState st;
   if (!o.out.empty()) {
-    std::filesystem::create_directories(o.out);
+    mpsfsi_examples::make_output_folder(o.out);
     pvd = std::make_unique<PvdWriter>(o.out + "/case" + c.name + ".pvd");
   }
   std::unique_ptr<ProgressReporter> progress;

@@ -13,6 +13,7 @@
 
 #include "bending_test.hpp"
 #include "common/case_options.hpp"
+#include "common/output_folder.hpp"
 
 namespace {
 
@@ -77,6 +78,7 @@ int main(int argc, char** argv) try {
   o.run.progress = true;
   o.run.checkpoints = !out.empty();
 
+  if (!out.empty()) mpsfsi_examples::make_output_folder(out);  // before anything is printed
   std::printf("Three-point bending of ice beams (Table 1), %dD %s, l0 = %g m, indenter %g m/s, span 0.18 m, %s modulus\n",
               o.dim, o.dim == 3 ? "" : (o.run.plane_model == mpsfsi::PlaneModel::plane_stress ? "plane stress" : "plane strain"),
               o.run.l0, o.run.speed, o.modulus.c_str());
@@ -86,7 +88,6 @@ int main(int argc, char** argv) try {
               "ddexp mm", "Psim N", "dd@P mm", "eps_sim", "eps_exp", "error", "broken", "crack", "surface", "wall s");
   std::unique_ptr<mpsfsi::CsvWriter> summary;
   if (!out.empty()) {
-    std::filesystem::create_directories(out);
     cli.write_case(out);
     summary = std::make_unique<mpsfsi::CsvWriter>(
         out + "/summary.csv",

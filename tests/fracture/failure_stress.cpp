@@ -102,7 +102,7 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a cut-out neighbour weighs the part
 // at the inner end, and its bottom face in tension, more at the outer end: choosing the larger
 // sigma_1 reads the top face's inner end and the bottom face's outer end; by default both read
 // their outer ends. Each read is the SVK stress of the exact gradient at that point. A top
-// particle beside a cut-out one of its face reads its outer end.
+// particle beside a loaded or a cut-out particle of its face reads its outer end.
 TEST_CASE_TEMPLATE("fracture.failure_stress: a surface particle reads the end of its cell its caller chooses", T,
                    std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
   constexpr int Dim = T::value;
@@ -181,6 +181,12 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a surface particle reads the end of
     if (reference[k][1] == highest && reference[k][0] > reference[beside][0]) mouth = k;
   }
   REQUIRE(mouth < n);
+  // Beside a loaded particle of its face (read at its centre: a point load's spikes), likewise.
+  FailureStressReadout<Dim> beside_load;
+  const auto mouth_loaded = [&](std::size_t k) { return k == mouth; };
+  const MatArray<Dim, double> loaded_read =
+      beside_load.read(point, x, reference, bonds, &fit, mouth_loaded, settings, larger);
+  CHECK(std::memcmp(loaded_read[beside].data(), outer_read[beside].data(), sizeof(double) * Dim * Dim) == 0);
   chosen.mark_cut_out(mouth, n);
   const MatArray<Dim, double> after_cut = chosen.read(point, x, reference, bonds, &fit, unloaded, settings, larger);
   CHECK(std::memcmp(after_cut[beside].data(), outer_read[beside].data(), sizeof(double) * Dim * Dim) == 0);

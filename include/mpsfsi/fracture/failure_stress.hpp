@@ -46,8 +46,8 @@ inline namespace MPSFSI_ABI {
 //   across the cell, and a convex criterion is largest at one of its two ends. A face in
 //   bending tension reads its outer end; the last particle of a ligament, which a crack has
 //   reached from the opposite face, reads the end toward the crack tip (docs/theory.md, 5.4).
-//   Only where the face is whole around the particle (face_whole). read_screened() chooses only
-//   for the samples its averages read. Averaged,
+//   Only where the face is whole and free around the particle (face_whole). read_screened()
+//   chooses only for the samples its averages read. Averaged,
 //   it is averaged only along its face (bonded surface particles with normals within 25
 //   degrees, each read at its own surface point), so the read-out does not move inwards; and
 //   twice (a filter over +-4 l0 on a flat face): with one pass, the grid-scale release wave of
@@ -270,16 +270,17 @@ class FailureStressReadout {
     return read_outside_[k] != 0 && normal_[i].dot(normal_[k]) >= kSameFace;
   }
 
-  // Whether particle i's face is whole around it: no bond to a particle of its face (loaded or
-  // not) cut since the first read, and no such particle cut out. Beside a crack's mouth the
-  // inner end of the cell reads the field beside the crack tip, not the face's, and only the
-  // outer end is read there.
+  // Whether particle i's face is whole and free around it: every bonded particle of its face is
+  // read outside as well (not loaded), its bond not cut since the first read, and not cut out.
+  // Beside a crack's mouth the inner end of the cell reads the field beside the crack tip, and
+  // beside a loaded particle the spikes of its load (see above), not the face's: only the outer
+  // end is read there.
   bool face_whole(const BondList<Dim, double>& bonds, std::size_t i) const {
     for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
       const auto k = static_cast<std::size_t>(bonds.neighbor(b));
       if (!on_surface_[k] || normal_[i].dot(normal_[k]) < kSameFace) continue;
       const bool cut_since = bonds.beta(b) == 0 && initial_weight_[static_cast<std::size_t>(b)] != 0;
-      if (cut_since || (k < cut_out_.size() && cut_out_[k] != 0)) return false;
+      if (!read_outside_[k] || cut_since || (k < cut_out_.size() && cut_out_[k] != 0)) return false;
     }
     return true;
   }
@@ -318,6 +319,10 @@ class FailureStressReadout {
       for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
         const auto i = static_cast<std::size_t>(ii);
         read_outside_[i] = on_surface_[i] && !loaded(i) ? 1 : 0;
+      }
+      MPSFSI_OMP(parallel for schedule(static))
+      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
         if (!unchosen_.empty()) unchosen_[i] = 0;
         if (!read_outside_[i]) {
           surface_stress_[i] = point[i];
