@@ -168,6 +168,30 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a surface particle reads the end of
   CHECK(top > 0);
   CHECK(bottom > 0);
 
+  // Averaged, each end's samples are averaged along the face and the end is chosen on the two
+  // averages: the read is, to the bit, the read of every particle at its outer end or that at its
+  // inner end (where its face is whole), whichever has the larger sigma_1.
+  {
+    typename FailureStressReadout<Dim>::Settings averaging = settings;
+    averaging.average = true;
+    averaging.self_weight = KoshizukaWeight::value(l0, re);
+    const auto always_inner = [](const Mat<Dim>&, const Mat<Dim>&) { return true; };
+    FailureStressReadout<Dim> outer_reader, inner_reader, chosen_reader;
+    const MatArray<Dim, double> outer_average = outer_reader.read(point, x, reference, bonds, &fit, unloaded, averaging);
+    const MatArray<Dim, double> inner_average =
+        inner_reader.read(point, x, reference, bonds, &fit, unloaded, averaging, always_inner);
+    const auto& chosen_average = chosen_reader.read(point, x, reference, bonds, &fit, unloaded, averaging, larger);
+    std::size_t differ = 0, inner_read = 0;
+    for (std::size_t p = 0; p < n; ++p) {
+      const bool inner = sigma_1(inner_average[p]) > sigma_1(outer_average[p]);
+      const Mat<Dim>& expected = inner ? inner_average[p] : outer_average[p];
+      differ += std::memcmp(chosen_average[p].data(), expected.data(), sizeof(double) * Dim * Dim) == 0 ? 0 : 1;
+      inner_read += inner ? 1 : 0;
+    }
+    CHECK(differ == 0);
+    CHECK(inner_read > 0);  // the top face, in bending compression, reads its inner ends
+  }
+
   // Beside a cut-out particle of its face (a crack's mouth) a top particle reads its outer end.
   std::size_t beside = n;
   for (std::size_t p = 0; p < n && beside == n; ++p)

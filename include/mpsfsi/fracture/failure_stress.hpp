@@ -46,8 +46,8 @@ inline namespace MPSFSI_ABI {
 //   across the cell, and a convex criterion is largest at one of its two ends. A face in
 //   bending tension reads its outer end; the last particle of a ligament, which a crack has
 //   reached from the opposite face, reads the end toward the crack tip (docs/theory.md, 5.4).
-//   Only where the face is whole and free around the particle (face_whole). read_screened()
-//   chooses only for the samples its averages read. Averaged,
+//   Only where the face is whole and free around the particle (face_whole); with averaging,
+//   the end is chosen on the two ends' averages (read_inner_ends). Averaged,
 //   it is averaged only along its face (bonded surface particles with normals within 25
 //   degrees, each read at its own surface point), so the read-out does not move inwards; and
 //   twice (a filter over +-4 l0 on a flat face): with one pass, the grid-scale release wave of
@@ -92,10 +92,11 @@ class FailureStressReadout {
                                     const VecArray<Dim, double>& reference, const BondList<Dim, double>& bonds,
                                     const fit_type* fit, Loaded&& loaded, const Settings& s,
                                     InnerEnd&& inner_end = InnerEnd{}) {
-    const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s, inner_end, true);
+    const auto& sampled = sample(point, x, reference, bonds, fit, loaded, s, inner_end, !s.average);
     if (!s.average) return sampled;
     average_pass(point, bonds, sampled, false, averaged_, nullptr);
     if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, nullptr);
+    read_inner_ends(point, bonds, inner_end, nullptr, nullptr, false);
     return at_surface_ ? smoothed_ : averaged_;
   }
 
@@ -109,8 +110,8 @@ class FailureStressReadout {
   // evaluated(i) says where the returned tensors hold. complete(), given the same `point` and
   // `bonds` as they were at this call (FractureProcess completes before anything changes them),
   // gives to the bit the tensors read() would have (given the same `inner_end`). A surface
-  // sample whose end is not chosen yet is bounded by the higher of its two ends' bounds; the end
-  // is chosen where an average reads the sample, the rest by complete().
+  // sample with both ends is bounded by the higher of its two ends' bounds: both ends' averages
+  // are convex combinations of the two ends' samples.
   template <class Loaded, class Bound, class MayFail, class InnerEnd = OuterEnd>
   const MatArray<Dim, double>& read_screened(const MatArray<Dim, double>& point, const VecArray<Dim, double>& x,
                                              const VecArray<Dim, double>& reference,
@@ -134,7 +135,7 @@ class FailureStressReadout {
     for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(n); ++kk) {
       const auto k = static_cast<std::size_t>(kk);
       const bool outside = at_surface_ && read_outside_[k];
-      const bool both_ends = outside && !unchosen_.empty() && unchosen_[k];
+      const bool both_ends = outside && !two_ended_.empty() && two_ended_[k];
       const double centre_bound = bound(point[k]), centre_norm = point[k].norm();
       double surface_bound = outside ? bound(sampled[k]) : centre_bound;
       double surface_norm = outside ? sampled[k].norm() : centre_norm;
@@ -188,9 +189,9 @@ class FailureStressReadout {
         }
       }
     }
-    choose_read_ends(bonds, inner_end, &first_pass_needed());
     average_pass(point, bonds, sampled, false, averaged_, &first_pass_needed());
     if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, &needed_);
+    read_inner_ends(point, bonds, inner_end, &first_pass_needed(), &needed_, false);
     pending_ = true;
     cuts_at_read_ = bonds.num_cut();
     return at_surface_ ? smoothed_ : averaged_;
@@ -210,11 +211,11 @@ class FailureStressReadout {
     if (!pending_) return;
     if (bonds.num_cut() != cuts_at_read_)
       detail::throw_invalid("FailureStressReadout::complete", "bonds were cut after the read it completes");
-    if (!unchosen_.empty() && std::is_same_v<std::decay_t<InnerEnd>, OuterEnd>)
+    if (!two_ended_.empty() && std::is_same_v<std::decay_t<InnerEnd>, OuterEnd>)
       detail::throw_invalid("FailureStressReadout::complete", "the read it completes was given an inner_end; pass it");
-    choose_read_ends(bonds, inner_end, nullptr);
     average_pass(point, bonds, at_surface_ ? surface_stress_ : point, false, averaged_, &first_pass_needed(), true);
     if (at_surface_) average_pass(point, bonds, averaged_, true, smoothed_, &needed_, true);
+    read_inner_ends(point, bonds, inner_end, &first_pass_needed(), &needed_, true);
     pending_ = false;
   }
 
@@ -286,8 +287,9 @@ class FailureStressReadout {
   }
 
   // The surface samples (at the centre where not read outside), and what every read starts from.
-  // With an `inner_end`, both ends' tensors of every particle read outside, the end chosen now
-  // (`choose`) or left for choose_read_ends().
+  // With an `inner_end`, the inner end's tensor too where the face is whole (elsewhere the outer
+  // one stands in for it), the end chosen now (`choose`, without averaging) or after the
+  // averaging (two_ended_, read_inner_ends()).
   template <class Loaded, class InnerEnd>
   const MatArray<Dim, double>& sample(const MatArray<Dim, double>& point, const VecArray<Dim, double>& x,
                                       const VecArray<Dim, double>& reference, const BondList<Dim, double>& bonds,
@@ -297,7 +299,7 @@ class FailureStressReadout {
     const std::size_t n = x.size();
     const bool at_surface = fit != nullptr;
     pending_ = false;
-    unchosen_.clear();
+    two_ended_.clear();
     // The settings complete() averages with again, and what the read returns.
     self_weight_ = s.self_weight;
     at_surface_ = at_surface;
@@ -314,7 +316,7 @@ class FailureStressReadout {
       read_outside_.resize(n);
       surface_stress_.resize(n);
       if (two_ends) inner_stress_.resize(n);
-      if (two_ends && !choose) unchosen_.resize(n);
+      if (two_ends && !choose) two_ended_.resize(n);
       MPSFSI_OMP(parallel for schedule(static))
       for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
         const auto i = static_cast<std::size_t>(ii);
@@ -323,7 +325,7 @@ class FailureStressReadout {
       MPSFSI_OMP(parallel for schedule(static))
       for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
         const auto i = static_cast<std::size_t>(ii);
-        if (!unchosen_.empty()) unchosen_[i] = 0;
+        if (!two_ended_.empty()) two_ended_[i] = 0;
         if (!read_outside_[i]) {
           surface_stress_[i] = point[i];
           continue;
@@ -332,10 +334,13 @@ class FailureStressReadout {
         const Vec<Dim, double> half_cell = 0.5 * s.l0 * normal_[i];
         surface_stress_[i] = detail::cauchy_from_svk(fit->gradient_at(affine, half_cell), s.lame);
         if constexpr (two_ends) {
-          if (!face_whole(bonds, i)) continue;
+          if (!face_whole(bonds, i)) {
+            inner_stress_[i] = surface_stress_[i];
+            continue;
+          }
           inner_stress_[i] = detail::cauchy_from_svk(fit->gradient_at(affine, -half_cell), s.lame);
           if (!choose)
-            unchosen_[i] = 1;
+            two_ended_[i] = 1;
           else if (inner_end(surface_stress_[i], inner_stress_[i]))
             surface_stress_[i] = inner_stress_[i];
         }
@@ -344,25 +349,26 @@ class FailureStressReadout {
     return at_surface ? surface_stress_ : point;
   }
 
-  // Chooses the end of every sample left unchosen that a first averaging pass marked in `only`
-  // reads (its own particle's or a bonded neighbour's), or, without `only`, of all of them.
+  // The inner ends' samples averaged along the face as the outer ones were (the same two passes,
+  // over the particles read outside that `first_only` and `second_only` mark, or, with `rest`,
+  // that they do not), and the end chosen on the averages for every particle whose face is whole:
+  // its read becomes the inner average where `inner_end` says so. Choosing sample by sample
+  // before the averaging would average the larger of two values at every particle, which lifts
+  // the average wherever the field is rough at the scale of the spacing (docs/theory.md, 5.4).
   template <class InnerEnd>
-  void choose_read_ends(const BondList<Dim, double>& bonds, InnerEnd&& inner_end,
-                        const std::vector<std::uint8_t>* only) {
+  void read_inner_ends(const MatArray<Dim, double>& point, const BondList<Dim, double>& bonds, InnerEnd&& inner_end,
+                       const std::vector<std::uint8_t>* first_only, const std::vector<std::uint8_t>* second_only,
+                       bool rest) {
     if constexpr (!std::is_same_v<std::decay_t<InnerEnd>, OuterEnd>) {
-      if (unchosen_.empty()) return;
+      if (two_ended_.empty()) return;
+      average_pass(point, bonds, inner_stress_, false, averaged_inner_, first_only, rest, true);
+      average_pass(point, bonds, averaged_inner_, true, smoothed_inner_, second_only, rest, true);
       MPSFSI_OMP(parallel for schedule(static))
-      for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(unchosen_.size()); ++kk) {
-        const auto k = static_cast<std::size_t>(kk);
-        if (!unchosen_[k]) continue;
-        bool read = !only || (*only)[k];
-        for (Offset b = bonds.begin(k); b < bonds.end(k) && !read; ++b)
-          read = (*only)[static_cast<std::size_t>(bonds.neighbor(b))] != 0;
-        if (!read) continue;
-        if (inner_end(surface_stress_[k], inner_stress_[k])) surface_stress_[k] = inner_stress_[k];
-        unchosen_[k] = 0;
+      for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(two_ended_.size()); ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
+        if (!two_ended_[i] || (second_only && ((*second_only)[i] != 0) == rest)) continue;
+        if (inner_end(smoothed_[i], smoothed_inner_[i])) smoothed_[i] = smoothed_inner_[i];
       }
-      if (!only) unchosen_.clear();
     }
   }
 
@@ -462,11 +468,11 @@ class FailureStressReadout {
 
   // One averaging pass into `out`: particles read outside average `in` along their face; the
   // others (all of them without surface reading) average the centre stresses over all bonds,
-  // or, with `surface_only`, keep `in`. With `only`, just the particles it marks (or, with
-  // `rest`, just the others).
+  // or, with `surface_only`, keep `in`, or, with `faces_only`, are left as they are. With
+  // `only`, just the particles it marks (or, with `rest`, just the others).
   void average_pass(const MatArray<Dim, double>& point, const BondList<Dim, double>& bonds,
                     const MatArray<Dim, double>& in, bool surface_only, MatArray<Dim, double>& out,
-                    const std::vector<std::uint8_t>* only, bool rest = false) {
+                    const std::vector<std::uint8_t>* only, bool rest = false, bool faces_only = false) {
     const std::size_t n = point.size();
     out.resize(n);
     MPSFSI_OMP(parallel for schedule(static))
@@ -474,6 +480,7 @@ class FailureStressReadout {
       const auto i = static_cast<std::size_t>(ii);
       if (only && ((*only)[i] != 0) == rest) continue;
       const bool along_face = at_surface_ && read_outside_[i] != 0;
+      if (faces_only && !along_face) continue;
       if (surface_only && !along_face) {
         out[i] = in[i];
         continue;
@@ -504,8 +511,10 @@ class FailureStressReadout {
   std::vector<double> initial_weight_;  // w of every bond at the first read (0 if already cut)
   std::vector<std::uint8_t> on_surface_, read_outside_;
   MatArray<Dim, double> surface_stress_, averaged_, smoothed_;
-  MatArray<Dim, double> inner_stress_;      // at the inner end of the cell, for a caller's inner_end
-  std::vector<std::uint8_t> unchosen_;      // samples whose end read_screened() has not chosen (or empty)
+  // At the inner end of the cell, for a caller's inner_end (the outer end's where the face is not
+  // whole), and its two averaging passes along the face.
+  MatArray<Dim, double> inner_stress_, averaged_inner_, smoothed_inner_;
+  std::vector<std::uint8_t> two_ended_;  // read outside with both ends, the end chosen after the averaging (or empty)
   std::vector<std::uint8_t> cut_out_;  // empty until the first CrackSide::slab failure
   // The settings of the last read (complete() averages with them again).
   double self_weight_ = 0;
