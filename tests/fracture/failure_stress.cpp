@@ -177,7 +177,8 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a surface particle reads the end of
     averaging.self_weight = KoshizukaWeight::value(l0, re);
     const auto always_inner = [](const Mat<Dim>&, const Mat<Dim>&) { return true; };
     FailureStressReadout<Dim> outer_reader, inner_reader, chosen_reader;
-    const MatArray<Dim, double> outer_average = outer_reader.read(point, x, reference, bonds, &fit, unloaded, averaging);
+    const MatArray<Dim, double> outer_average =
+        outer_reader.read(point, x, reference, bonds, &fit, unloaded, averaging);
     const MatArray<Dim, double> inner_average =
         inner_reader.read(point, x, reference, bonds, &fit, unloaded, averaging, always_inner);
     const auto& chosen_average = chosen_reader.read(point, x, reference, bonds, &fit, unloaded, averaging, larger);
