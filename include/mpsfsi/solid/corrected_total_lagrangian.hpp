@@ -211,6 +211,9 @@ class CorrectedTotalLagrangian {
         const Offset first = packed_.begin(group);
         const auto m = static_cast<std::size_t>(packed_.end(group) - first);
         const Scalar* const inverse = packed_.moments(group);
+        // The next group's M^+ is read in order but is not part of the bond stream that the
+        // first pass prefetches; without this its first loads waited on memory.
+        if (group + 1 < group_hi) prefetch_bytes(packed_.moments(group + 1), moment_bytes);
         lane_type xi[Dim];
         for (std::size_t l = 0; l < lanes; ++l) {
           const vec_type& p = pos[i0 + std::min(l, present - 1)];
@@ -241,20 +244,19 @@ class CorrectedTotalLagrangian {
             for (int c = 0; c < width; ++c) bsum[a][c] += weighted * phi[c];
           }
         }
-        // U = A_i - [I 0] = B M^+, over the stored triangle of M^+ in its order.
+        // U = A_i - [I 0] = B M^+, column by column: each column's Dim sums stay in registers
+        // (summed over the stored triangle's order, each entry in memory took a load and a store
+        // per term, and the sums into one entry waited on each other's stores).
         lane_type u[Dim][width];
-        for (int a = 0; a < Dim; ++a)
-          for (int c = 0; c < width; ++c) u[a][c].setZero();
-        {
-          const Scalar* entry = inverse;
-          for (int e = 0; e < width; ++e)
-            for (int c = e; c < width; ++c, entry += lanes) {
-              const lane_type m_ec = lane_map(entry);
-              for (int a = 0; a < Dim; ++a) {
-                u[a][c] += bsum[a][e] * m_ec;
-                if (c != e) u[a][e] += bsum[a][c] * m_ec;
-              }
-            }
+        for (int c = 0; c < width; ++c) {
+          lane_type sum[Dim];
+          const lane_type m_0c = lane_map(inverse + packed_type::moment_at(0, c));
+          for (int a = 0; a < Dim; ++a) sum[a] = bsum[a][0] * m_0c;
+          for (int e = 1; e < width; ++e) {
+            const lane_type m_ec = lane_map(inverse + packed_type::moment_at(e, c));
+            for (int a = 0; a < Dim; ++a) sum[a] += bsum[a][e] * m_ec;
+          }
+          for (int a = 0; a < Dim; ++a) u[a][c] = sum[a];
         }
         // Particles that read a direction softly: F turned with their bonds (DeformationFit::objective),
         // the fitted F kept for the stress term below.
@@ -294,19 +296,16 @@ class CorrectedTotalLagrangian {
         if (cauchy) store_cauchy(u, vp, v, i0, present, cauchy);
         if (soft_group) add_soft_reading_terms(u, bsum, c2, i0, present, fitted, vp);
         // W = V P [M^+]_(1..d) - 2c U, so that t_ij = beta_ij (2c du_ij + W phi_ij).
+        // Column by column, as U.
         lane_type w[Dim][width];
-        for (int a = 0; a < Dim; ++a)
-          for (int c = 0; c < width; ++c) w[a][c] = -c2 * u[a][c];
-        {
-          const Scalar* entry = inverse;  // rows b < Dim of the triangle come first
-          for (int b = 0; b < Dim; ++b)
-            for (int c = b; c < width; ++c, entry += lanes) {
-              const lane_type m_bc = lane_map(entry);
-              for (int a = 0; a < Dim; ++a) {
-                w[a][c] += vp[a][b] * m_bc;
-                if (c != b && c < Dim) w[a][b] += vp[a][c] * m_bc;
-              }
-            }
+        for (int c = 0; c < width; ++c) {
+          lane_type sum[Dim];
+          for (int a = 0; a < Dim; ++a) sum[a] = -c2 * u[a][c];
+          for (int b = 0; b < Dim; ++b) {
+            const lane_type m_bc = lane_map(inverse + packed_type::moment_at(b, c));
+            for (int a = 0; a < Dim; ++a) sum[a] += vp[a][b] * m_bc;
+          }
+          for (int a = 0; a < Dim; ++a) w[a][c] = sum[a];
         }
         lane_type vi[Dim];
         if constexpr (Viscous)
@@ -400,16 +399,23 @@ class CorrectedTotalLagrangian {
   using packed_type = detail::PackedBonds<Dim, Scalar, lanes>;
   static constexpr std::size_t slot_size = packed_type::rows * lanes;  // scalars in a slot's block
 
+  static constexpr std::size_t moment_bytes = packed_type::moment_rows * lanes * sizeof(Scalar);  // a group's M^+
+
+  // Asks the cache for `count` bytes from `data` on.
+  static void prefetch_bytes(const void* data, std::size_t count) {
+#if defined(__GNUC__)
+    const char* const bytes = static_cast<const char*>(data);
+    for (std::size_t byte = 0; byte < count; byte += 64) __builtin_prefetch(bytes + byte);
+#else
+    static_cast<void>(data);
+    static_cast<void>(count);
+#endif
+  }
+
   // Asks the cache for a slot of the packed bonds: its neighbour indices and its block of scalars.
   static void prefetch_slot(const Index* neighbors, const Scalar* block) {
-#if defined(__GNUC__)
-    const char* const bytes = reinterpret_cast<const char*>(block);
-    for (std::size_t byte = 0; byte < slot_size * sizeof(Scalar); byte += 64) __builtin_prefetch(bytes + byte);
-    __builtin_prefetch(neighbors);
-#else
-    static_cast<void>(neighbors);
-    static_cast<void>(block);
-#endif
+    prefetch_bytes(block, slot_size * sizeof(Scalar));
+    prefetch_bytes(neighbors, 1);
   }
 
   // sigma = (F S) F^T / det F per lane, with F S = vp / V, into the particles i0 .. i0 + present.
