@@ -164,6 +164,30 @@ void check_force_loop_against_bond_sum(ModelBlock<Dim, CorrectedTotalLagrangian<
     }
     CHECK(worst_fused < 1e-12 * scale);
     CHECK(worst_fused_stress < 1e-12 * stress_scale);  // another instantiation: round-off
+    // Kept fits (for the failure check's surface read): two particles in three asked for. They
+    // are DeformationFit::affine's A_i to round-off (the same sums in another order), and keeping
+    // them changes no force.
+    std::vector<std::uint8_t> wanted(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) wanted[i] = i % 3 != 2 ? 1 : 0;
+    block.model.keep_affine(&wanted);
+    REQUIRE(block.model.keeps_affine(x.size()));
+    VecArray<Dim> keeping;
+    MatArray<Dim> keeping_stress;
+    block.model.internal_forces(x, velocity, block.bonds, keeping, &keeping_stress, zeta);
+    block.model.keep_affine(nullptr);
+    const auto& kept = block.model.kept_affine();
+    REQUIRE(kept.size() == x.size());
+    double worst_affine = 0, affine_scale = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      CHECK(keeping[i] == fused_with_stress[i]);
+      CHECK(keeping_stress[i] == fused_stress[i]);
+      if (!wanted[i]) continue;
+      const auto expected = fit.affine(x, block.bonds, i);
+      affine_scale = std::max(affine_scale, expected.norm());
+      worst_affine = std::max(worst_affine, (kept[i] - expected).norm());
+    }
+    CHECK(affine_scale > 0);
+    CHECK(worst_affine < 1e-12 * affine_scale);
   }
   parallel::set_num_threads(saved);
 }

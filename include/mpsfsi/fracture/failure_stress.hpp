@@ -256,6 +256,15 @@ class FailureStressReadout {
   }
   std::size_t cut_out_marks() const { return cut_out_.size(); }
 
+  // The particles at the surface (marked at the first read; empty before it): those a read at
+  // the surface fits, unless they carry a load.
+  const std::vector<std::uint8_t>& surface_particles() const { return on_surface_; }
+
+  // The next reads take each surface particle's fitted A_i from `fitted` (the stress model's fit
+  // at the same positions and bonds, every surface particle's entry current) instead of fitting
+  // it again; nullptr: they fit it.
+  void use_fitted(const std::vector<typename fit_type::affine_type>* fitted) { fitted_ = fitted; }
+
  private:
   // Surface detection threshold of structure_normals, and the cosine within which two surface
   // particles are on the same face (a narrow 3D beam's bottom face is within 2 l0 of its edges,
@@ -330,7 +339,7 @@ class FailureStressReadout {
           surface_stress_[i] = point[i];
           continue;
         }
-        const auto affine = fit->affine(x, bonds, i);
+        const auto affine = fitted_ ? (*fitted_)[i] : fit->affine(x, bonds, i);
         const Vec<Dim, double> half_cell = 0.5 * s.l0 * normal_[i];
         surface_stress_[i] = detail::cauchy_from_svk(fit->gradient_at(affine, half_cell), s.lame);
         if constexpr (two_ends) {
@@ -510,6 +519,7 @@ class FailureStressReadout {
   VecArray<Dim, double> normal_;  // outward normals at the first read (zero inside)
   std::vector<double> initial_weight_;  // w of every bond at the first read (0 if already cut)
   std::vector<std::uint8_t> on_surface_, read_outside_;
+  const std::vector<typename fit_type::affine_type>* fitted_ = nullptr;  // use_fitted()
   MatArray<Dim, double> surface_stress_, averaged_, smoothed_;
   // At the inner end of the cell, for a caller's inner_end (the outer end's where the face is not
   // whole), and its two averaging passes along the face.

@@ -87,6 +87,9 @@ class FractureProcess {
     readout_settings readout;
     double crack_half_width, re, time;
     CrackSide crack_side = CrackSide::slab;
+    // The fit's A_i at these positions and bonds, current at every surface particle
+    // (surface_particles()), or nullptr: the read-out fits them itself.
+    const std::vector<typename DeformationFit<Dim, double>::affine_type>* fitted = nullptr;
   };
 
   // Eq 27 at every particle that `fixed(i)` does not hold and that has an intact bond; each
@@ -130,6 +133,7 @@ class FractureProcess {
     };
     // With a convex bound, the averages are computed only where the bound of the particle's
     // neighbourhood reaches its strength (FailureStressReadout::read_screened).
+    readout_.use_fitted(s.fitted);
     const auto& sigma = [&]() -> const MatArray<Dim, double>& {
       if constexpr (detail::has_convex_failure_bound<Failure, Dim>::value)
         return readout_.read_screened(
@@ -140,6 +144,7 @@ class FractureProcess {
       else
         return readout_.read(s.stresses, x, s.reference, s.bonds, s.fit, loaded, s.readout, larger_end());
     }();
+    readout_.use_fitted(nullptr);
     // With the model's upper bound, a particle whose bound is below its strength cannot fail and
     // its principal() is left for refresh_output(). That reads the tensors later, so only when
     // they are the read-out's own: the stress field itself is recomputed after a cut.
@@ -193,6 +198,9 @@ class FractureProcess {
   const Failure& model() const { return failure_; }
   const std::vector<FailureEvent<Dim>>& log() const { return log_; }
   double first_failure_time() const { return first_failure_time_; }
+  // The particles a read at the surface fits (FailureStressReadout::surface_particles; empty
+  // before the first check, which marks them). The vector stays where it is.
+  const std::vector<std::uint8_t>& surface_particles() const { return readout_.surface_particles(); }
   const std::vector<double>& strengths(const ParticleSet<Dim>& set) const { return set.field(strength_); }
   const std::vector<double>& criterion_stresses(ParticleSet<Dim>& set, const MatArray<Dim, double>& stresses,
                                                const BondList<Dim, double>& bonds) {

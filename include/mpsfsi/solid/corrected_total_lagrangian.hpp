@@ -53,6 +53,7 @@ class CorrectedTotalLagrangian {
   using vec_type = Vec<Dim, Scalar>;
   using mat_type = Mat<Dim, Scalar>;
   using fit_type = DeformationFit<Dim, Scalar>;
+  using affine_type = typename fit_type::affine_type;
   static constexpr int width = fit_type::width;
   // Particles per SIMD step of the force loop: one register of doubles (core/abi.hpp).
   static constexpr int lanes = simd_double_lanes;
@@ -147,6 +148,9 @@ class CorrectedTotalLagrangian {
     const std::size_t stride = (Dim * lanes * row + line - 1) / line * line;
     scratch_.resize(static_cast<std::size_t>(threads) * stride + line);
     partial_.resize(static_cast<std::size_t>(threads - 1) * count);
+    const std::uint8_t* const keep = keeps_affine(count) ? keep_->data() : nullptr;
+    if (keep) kept_.resize(count);
+    affine_type* const kept = kept_.data();
     // Raw pointers: stores through force would otherwise make the compiler reload every
     // container's data pointer in the inner loops.
     Scalar* const scratch = reinterpret_cast<Scalar*>(
@@ -271,6 +275,13 @@ class CorrectedTotalLagrangian {
           for (int a = 0; a < Dim; ++a)
             for (int b = 0; b < Dim; ++b) u[a][b][l] = f(a, b) - (a == b ? Scalar(1) : Scalar(0));
         }
+        if (keep)
+          for (std::size_t l = 0; l < present; ++l) {
+            if (!keep[i0 + l]) continue;
+            affine_type& a = kept[i0 + l];
+            for (int r = 0; r < Dim; ++r)
+              for (int c = 0; c < width; ++c) a(r, c) = (r == c ? Scalar(1) : Scalar(0)) + u[r][c][l];
+          }
         // Per lane: F = I + U[:, :Dim], E = (F^T F - I)/2, S = lambda tr(E) I + 2 mu E, and
         // V P = V F S (detail::green_strain, svk_stress, written out lane-wise).
         lane_type e[Dim][Dim];
@@ -395,6 +406,16 @@ class CorrectedTotalLagrangian {
 
   const fit_type& fit() const { return fit_; }
 
+  // From now on every force loop also keeps the fitted A_i (DeformationFit::affine, to round-off)
+  // of each particle that `wanted` marks (nonzero; nullptr: none), while `wanted` has an entry
+  // per particle: the failure check reads the stress at the surface from them instead of fitting
+  // those particles again. `wanted` must outlive its use.
+  void keep_affine(const std::vector<std::uint8_t>* wanted) { keep_ = wanted; }
+  // Whether the force loop keeps A_i for n particles, and the kept A_i (of the last force loop's
+  // positions; other particles' entries are stale).
+  bool keeps_affine(std::size_t n) const { return keep_ != nullptr && keep_->size() == n; }
+  const std::vector<affine_type>& kept_affine() const { return kept_; }
+
  private:
   using packed_type = detail::PackedBonds<Dim, Scalar, lanes>;
   static constexpr std::size_t slot_size = packed_type::rows * lanes;  // scalars in a slot's block
@@ -468,6 +489,8 @@ class CorrectedTotalLagrangian {
   VecArray<Dim, Scalar> partial_;  // the forces threads 1.. add up, one copy per thread
   VecArray<Dim, Scalar> unused_force_;  // what stresses() computes besides them
   std::vector<Scalar> scratch_;  // r_ij of the group in hand (Dim x lanes per slot), per thread
+  const std::vector<std::uint8_t>* keep_ = nullptr;  // whose A_i the force loop keeps (keep_affine)
+  std::vector<affine_type> kept_;
 };
 
 }  // namespace MPSFSI_ABI

@@ -63,6 +63,13 @@ template <class Model, class = void>
 struct has_deformation_fit : std::false_type {};
 template <class Model>
 struct has_deformation_fit<Model, std::void_t<decltype(std::declval<const Model&>().fit())>> : std::true_type {};
+// Whether its force loop can keep the fitted A_i of the surface particles (keep_affine(),
+// kept_affine()), for the failure check's surface read-out.
+template <class Model, class = void>
+struct keeps_affine : std::false_type {};
+template <class Model>
+struct keeps_affine<Model, std::void_t<decltype(std::declval<Model&>().keep_affine(nullptr)),
+                                       decltype(std::declval<const Model&>().kept_affine())>> : std::true_type {};
 }  // namespace detail
 
 // Elastic solid on fixed initial bonds (total Lagrangian, docs/theory.md, section 3), integrated
@@ -291,9 +298,12 @@ class ElasticSolver {
     last_dt_ = dt;
     ++step_count_;
     stresses_current_ = with_stresses;
+    kept_fits_current_ = loop_kept_fits_;
     if constexpr (can_fail) {
-      if (apply_failure())
+      if (apply_failure()) {
         stresses_current_ = compute_forces(set_.positions(), set_.velocities(), force_, &set_.field(stress_field_));
+        kept_fits_current_ = loop_kept_fits_;
+      }
     }
   }
 
@@ -350,8 +360,10 @@ class ElasticSolver {
   // Cauchy stress per particle at the current positions (computed once per step on demand).
   const MatArray<Dim, double>& stresses() {
     if (!stresses_current_) {
+      ask_for_kept_fits(set_.size());
       model_.stresses(set_.positions(), bonds_, set_.field(stress_field_));
       stresses_current_ = true;
+      kept_fits_current_ = loop_kept_fits_;
     }
     return set_.field(stress_field_);
   }
@@ -461,6 +473,7 @@ class ElasticSolver {
     model_.checkpoint_restored(bonds_);
     if (p_.bond_viscosity > 0 && !model_adds_viscosity) viscosity_.initialize(bonds_);
     stresses_current_ = false;
+    kept_fits_current_ = false;
   }
 
  private:
@@ -490,6 +503,7 @@ class ElasticSolver {
   // returns whether it did.
   bool compute_forces(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force,
                       MatArray<Dim, double>* stresses = nullptr) {
+    ask_for_kept_fits(x.size());
     const double viscosity =
         p_.bond_viscosity * p_.density * p_.p_wave_speed() * context_.volume * Dim / context_.n0;
     if constexpr (model_adds_viscosity) {
@@ -525,10 +539,13 @@ class ElasticSolver {
       if (p_.failure_stress_at_surface) fit = &model_.fit();
     const auto& x = set_.positions();
     touched_.clear();
-    const typename fracture_type::State state{
-        set_, bonds_, stresses(), reference_, external_, fit,
+    const auto& sigma = stresses();
+    typename fracture_type::State state{
+        set_, bonds_, sigma, reference_, external_, fit,
         {p_.l0, context_.n0, Weight::value(p_.l0, p_.re()), context_.lame, p_.average_failure_stress},
         p_.crack_half_width(), p_.re(), time_, p_.crack_side};
+    if constexpr (detail::keeps_affine<stress_model_type>::value)
+      if (fit && kept_fits_current_) state.fitted = &model_.kept_affine();
     const bool cut = fracture_.apply(
         state, [this](std::size_t i) { return constraints_.at(i) == Constraint::prescribed; },
         [&](std::size_t i) {
@@ -539,7 +556,21 @@ class ElasticSolver {
     return cut;
   }
 
+  // The force loop keeps the A_i of the particles the failure check reads at the surface, when
+  // it can and the check has marked them (at its first read). Sets loop_kept_fits_ for the loop
+  // about to run on `n` particles; the kept fits become current only where the caller says so.
+  void ask_for_kept_fits(std::size_t n) {
+    kept_fits_current_ = false;
+    loop_kept_fits_ = false;
+    if constexpr (can_fail && detail::keeps_affine<stress_model_type>::value) {
+      const auto& wanted = fracture_.surface_particles();
+      loop_kept_fits_ = p_.failure_stress_at_surface && wanted.size() == n;
+      model_.keep_affine(loop_kept_fits_ ? &wanted : nullptr);
+    }
+  }
+
   void bonds_changed() {
+    kept_fits_current_ = false;
     std::sort(touched_.begin(), touched_.end());
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
     model_.bonds_changed(bonds_, touched_);
@@ -576,6 +607,9 @@ class ElasticSolver {
   double time_ = 0, last_dt_ = 0;
   long long step_count_ = 0;
   bool stresses_current_ = false;
+  // Whether the last force loop kept the surface particles' A_i, and whether those are of the
+  // current positions and bonds (the last loop ran on them and they have not changed since).
+  bool loop_kept_fits_ = false, kept_fits_current_ = false;
   std::vector<std::size_t> touched_, scratch_;  // particles whose bonds a cut changed
 };
 
