@@ -149,6 +149,7 @@ class CorrectedTotalLagrangian {
     scratch_.resize(static_cast<std::size_t>(threads) * stride + line);
     partial_.resize(static_cast<std::size_t>(threads - 1) * count);
     const std::uint8_t* const keep = keeps_affine(count) ? keep_->data() : nullptr;
+    keep_ = nullptr;  // for this loop only: the caller's vector need not outlive it
     if (keep) kept_.resize(count);
     affine_type* const kept = kept_.data();
     // Raw pointers: stores through force would otherwise make the compiler reload every
@@ -406,13 +407,13 @@ class CorrectedTotalLagrangian {
 
   const fit_type& fit() const { return fit_; }
 
-  // From now on every force loop also keeps the fitted A_i (DeformationFit::affine, to round-off)
-  // of each particle that `wanted` marks (nonzero; nullptr: none), while `wanted` has an entry
-  // per particle: the failure check reads the stress at the surface from them instead of fitting
-  // those particles again. `wanted` must outlive its use.
+  // The next force loop also keeps the fitted A_i (DeformationFit::affine, to round-off) of each
+  // particle that `wanted` marks (nonzero; nullptr: none), if `wanted` has an entry per particle:
+  // the failure check reads the stress at the surface from them instead of fitting those
+  // particles again.
   void keep_affine(const std::vector<std::uint8_t>* wanted) { keep_ = wanted; }
-  // Whether the force loop keeps A_i for n particles, and the kept A_i (of the last force loop's
-  // positions; other particles' entries are stale).
+  // Whether the next force loop keeps A_i for n particles, and the kept A_i (of the positions of
+  // the last loop that kept them; other particles' entries are stale).
   bool keeps_affine(std::size_t n) const { return keep_ != nullptr && keep_->size() == n; }
   const std::vector<affine_type>& kept_affine() const { return kept_; }
 
@@ -489,7 +490,7 @@ class CorrectedTotalLagrangian {
   VecArray<Dim, Scalar> partial_;  // the forces threads 1.. add up, one copy per thread
   VecArray<Dim, Scalar> unused_force_;  // what stresses() computes besides them
   std::vector<Scalar> scratch_;  // r_ij of the group in hand (Dim x lanes per slot), per thread
-  const std::vector<std::uint8_t>* keep_ = nullptr;  // whose A_i the force loop keeps (keep_affine)
+  const std::vector<std::uint8_t>* keep_ = nullptr;  // whose A_i the next force loop keeps (keep_affine)
   std::vector<affine_type> kept_;
 };
 
