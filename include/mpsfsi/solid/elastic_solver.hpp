@@ -56,22 +56,6 @@ struct PaperSolidPolicies : SolidDefaults<Dim> {
   using stress_model = HwangModel<Dim, double>;
 };
 
-namespace detail {
-// Whether a stress model exposes its DeformationFit (fit()), so the failure criterion can read
-// the fitted field away from particle centres.
-template <class Model, class = void>
-struct has_deformation_fit : std::false_type {};
-template <class Model>
-struct has_deformation_fit<Model, std::void_t<decltype(std::declval<const Model&>().fit())>> : std::true_type {};
-// Whether its force loop can keep the fitted A_i of the surface particles (keep_affine(),
-// kept_affine()), for the failure check's surface read-out.
-template <class Model, class = void>
-struct keeps_affine : std::false_type {};
-template <class Model>
-struct keeps_affine<Model, std::void_t<decltype(std::declval<Model&>().keep_affine(nullptr)),
-                                       decltype(std::declval<const Model&>().kept_affine())>> : std::true_type {};
-}  // namespace detail
-
 // Elastic solid on fixed initial bonds (total Lagrangian, docs/theory.md, section 3), integrated
 // explicitly with velocity Verlet (kick-drift-kick, symplectic):
 //   v^{n+1/2} = v^n + dt/2 a^n,   x^{n+1} = x^n + dt v^{n+1/2},   v^{n+1} = v^{n+1/2} + dt/2 a^{n+1},
@@ -556,9 +540,8 @@ class ElasticSolver {
     return cut;
   }
 
-  // The force loop keeps the A_i of the particles the failure check reads at the surface, when
-  // it can and the check has marked them (at its first read). Sets loop_kept_fits_ for the loop
-  // about to run on `n` particles; the kept fits become current only where the caller says so.
+  // Asks the loop about to run on `n` particles to keep the A_i of the check's surface particles
+  // (marked at its first read); the kept fits become current only where the caller says so.
   void ask_for_kept_fits(std::size_t n) {
     kept_fits_current_ = false;
     loop_kept_fits_ = false;

@@ -73,6 +73,20 @@ struct has_model_forces_with_viscosity<
         std::declval<const BondList<Dim, double>&>(), std::declval<VecArray<Dim, double>&>(),
         std::declval<MatArray<Dim, double>*>(), std::declval<double>()))>> : std::true_type {};
 
+// Whether a stress model exposes its DeformationFit (fit()), so the failure criterion can read
+// the fitted field away from particle centres.
+template <class Model, class = void>
+struct has_deformation_fit : std::false_type {};
+template <class Model>
+struct has_deformation_fit<Model, std::void_t<decltype(std::declval<const Model&>().fit())>> : std::true_type {};
+// Whether its force loop can keep the fitted A_i of the surface particles (keep_affine(),
+// kept_affine()), for the failure check's surface read-out.
+template <class Model, class = void>
+struct keeps_affine : std::false_type {};
+template <class Model>
+struct keeps_affine<Model, std::void_t<decltype(std::declval<Model&>().keep_affine(nullptr)),
+                                       decltype(std::declval<const Model&>().kept_affine())>> : std::true_type {};
+
 template <class M, int Dim, class = void>
 struct has_model_stresses : std::false_type {};
 template <class M, int Dim>
