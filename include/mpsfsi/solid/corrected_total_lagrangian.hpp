@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
-#include "mpsfsi/core/detail/csr_builder.hpp"
 #include "mpsfsi/core/parallel.hpp"
 #include "mpsfsi/core/types.hpp"
 #include "mpsfsi/solid/bonds.hpp"
@@ -93,13 +92,13 @@ class CorrectedTotalLagrangian {
   //   U_i = sum_j du_ij g_ij^T = (sum_j beta_ij du_ij phi_ij^T) M_i^+,
   //   t_ij = beta_ij (2c du_ij + (V P_i [M_i^+]_(1..d) - 2c U_i) phi_ij),
   // so each bond needs only r0 and beta (and beta |r0| for the viscosity), and each particle its
-  // M_i^+. Each lane adds its own t_ij
-  // to its particle and subtracts it from particle j's force: thread 0 into `force`, the others
-  // into their own copies (partial_), which are added at the end, so no two threads write the
-  // same entry. Thread t takes the t-th contiguous block of groups, so its copy is written only
-  // within the bond graph's bandwidth of that block: only that stretch is zeroed and added (the
-  // whole array when the particles are not ordered in space). Each thread keeps the group's r_ij
-  // in its own rows of scratch_. Nothing is allocated after the first call.
+  // M_i^+. Each lane adds its own t_ij to its particle and subtracts it from particle j's force:
+  // thread 0 into `force`, the others into their own copies (partial_), which are added at the
+  // end, so no two threads write the same entry. Thread t takes a contiguous block of groups (the
+  // t-th share of the bonds), so its copy is written only within the bond graph's bandwidth of
+  // that block: only that stretch is zeroed and added (the whole array when the particles are not
+  // ordered in space). Each thread keeps the group's r_ij in its own rows of scratch_. Nothing is
+  // allocated after the first call.
   void internal_forces(const VecArray<Dim, Scalar>& x, const BondList<Dim, Scalar>& /*bonds*/, VecArray<Dim, Scalar>& force) {
     forces_and_stresses<false>(x, nullptr, force, nullptr, 0);
   }
@@ -151,6 +150,8 @@ class CorrectedTotalLagrangian {
     const std::uint8_t* const keep = keeps_affine(count) ? keep_->data() : nullptr;
     keep_ = nullptr;  // for this loop only: the caller's vector need not outlive it
     if (keep) kept_.resize(count);
+    const std::uint8_t* const held = skips_held(count) ? skip_->data() : nullptr;
+    skip_ = nullptr;
     affine_type* const kept = kept_.data();
     // Raw pointers: stores through force would otherwise make the compiler reload every
     // container's data pointer in the inner loops.
@@ -169,11 +170,30 @@ class CorrectedTotalLagrangian {
     // force loop).
     const std::size_t total_slots = static_cast<std::size_t>(packed_.end(groups - 1));
     const std::size_t slots_ahead = std::max<std::size_t>(1, 2048 / (slot_size * sizeof(Scalar)));
+    // Thread t takes the groups that hold the t-th share of the slots the loop evaluates (work[g]:
+    // those before group g), not the t-th share of the groups: skipped groups and the short rows
+    // at a body's surface would otherwise leave one thread with more bonds than the other.
+    const Offset* work = packed_.group_offsets();
+    if (held) {
+      work_.resize(groups + 1);
+      work_[0] = 0;
+      for (std::size_t g = 0; g < groups; ++g)
+        work_[g + 1] = work_[g] + (all_held(held, g * lanes, std::min<std::size_t>(lanes, count - g * lanes))
+                                       ? 0 : packed_.end(g) - packed_.begin(g));
+      work = work_.data();
+    }
+    auto split = [&](int t, int team) -> std::size_t {
+      if (t <= 0) return 0;
+      if (t >= team) return groups;
+      const Offset share = static_cast<Offset>(static_cast<std::size_t>(work[groups]) * static_cast<std::size_t>(t) /
+                                               static_cast<std::size_t>(team));
+      return static_cast<std::size_t>(std::lower_bound(work, work + groups, share) - work);
+    };
     // Thread t's block of groups, its particles, and the particles its bond loop writes to: that
     // block widened by the bandwidth.
     auto group_block = [&](int t, int team, std::size_t& lo, std::size_t& hi) {
-      lo = detail::block_begin(groups, t, team);
-      hi = detail::block_begin(groups, t + 1, team);
+      lo = split(t, team);
+      hi = split(t + 1, team);
     };
     auto block = [&](int t, int team, std::size_t& lo, std::size_t& hi) {
       group_block(t, team, lo, hi);
@@ -213,6 +233,10 @@ class CorrectedTotalLagrangian {
       for (std::size_t group = group_lo; group < group_hi; ++group) {
         const std::size_t i0 = group * lanes;
         const std::size_t present = std::min<std::size_t>(lanes, count - i0);  // lanes with a particle
+        if (held && all_held(held, i0, present)) {
+          write_held(i0, present, cauchy, keep, kept);  // their forces are the zeros written above
+          continue;
+        }
         const Offset first = packed_.begin(group);
         const auto m = static_cast<std::size_t>(packed_.end(group) - first);
         const Scalar* const inverse = packed_.moments(group);
@@ -417,6 +441,14 @@ class CorrectedTotalLagrangian {
   bool keeps_affine(std::size_t n) const { return keep_ != nullptr && keep_->size() == n; }
   const std::vector<affine_type>& kept_affine() const { return kept_; }
 
+  // The next force loop may skip the particles that `held` marks (nonzero; nullptr: none), if it
+  // has an entry per particle: the caller vouches that they and their bonded neighbours are
+  // prescribed with one velocity and unstrained (detail::HeldParticles), so that their forces and
+  // stresses are zero and their fits [I 0]. A group of particles that are all held is not
+  // evaluated: those are the values it gets.
+  void skip_held(const std::vector<std::uint8_t>* held) { skip_ = held; }
+  bool skips_held(std::size_t n) const { return skip_ != nullptr && skip_->size() == n; }
+
  private:
   using packed_type = detail::PackedBonds<Dim, Scalar, lanes>;
   static constexpr std::size_t slot_size = packed_type::rows * lanes;  // scalars in a slot's block
@@ -438,6 +470,19 @@ class CorrectedTotalLagrangian {
   static void prefetch_slot(const Index* neighbors, const Scalar* block) {
     prefetch_bytes(block, slot_size * sizeof(Scalar));
     prefetch_bytes(neighbors, 1);
+  }
+
+  static bool all_held(const std::uint8_t* held, std::size_t i0, std::size_t present) {
+    return std::all_of(held + i0, held + i0 + present, [](std::uint8_t h) { return h != 0; });
+  }
+
+  // A skipped group of held particles: zero stress, and the fit [I 0] where it is kept.
+  static void write_held(std::size_t i0, std::size_t present, mat_type* cauchy, const std::uint8_t* keep,
+                         affine_type* kept) {
+    for (std::size_t l = 0; l < present; ++l) {
+      if (cauchy) cauchy[i0 + l].setZero();
+      if (keep && keep[i0 + l]) kept[i0 + l] = affine_type::Identity();
+    }
   }
 
   // sigma = (F S) F^T / det F per lane, with F S = vp / V, into the particles i0 .. i0 + present.
@@ -489,8 +534,10 @@ class CorrectedTotalLagrangian {
   packed_type packed_;
   VecArray<Dim, Scalar> partial_;  // the forces threads 1.. add up, one copy per thread
   VecArray<Dim, Scalar> unused_force_;  // what stresses() computes besides them
+  std::vector<Offset> work_;  // the slots the loop evaluates before each group, when it skips some
   std::vector<Scalar> scratch_;  // r_ij of the group in hand (Dim x lanes per slot), per thread
   const std::vector<std::uint8_t>* keep_ = nullptr;  // whose A_i the next force loop keeps (keep_affine)
+  const std::vector<std::uint8_t>* skip_ = nullptr;  // which particles the next force loop may skip (skip_held)
   std::vector<affine_type> kept_;
 };
 

@@ -25,6 +25,7 @@
 #include "mpsfsi/solid/crack_plane.hpp"
 #include "mpsfsi/solid/deformation.hpp"
 #include "mpsfsi/solid/detail/blowup_check.hpp"
+#include "mpsfsi/solid/detail/held_particles.hpp"
 #include "mpsfsi/solid/detail/spacing_check.hpp"
 #include "mpsfsi/solid/failure_slot.hpp"
 #include "mpsfsi/solid/fragments.hpp"
@@ -344,7 +345,7 @@ class ElasticSolver {
   // Cauchy stress per particle at the current positions (computed once per step on demand).
   const MatArray<Dim, double>& stresses() {
     if (!stresses_current_) {
-      ask_for_kept_fits(set_.size());
+      prepare_loop(set_.positions());
       model_.stresses(set_.positions(), bonds_, set_.field(stress_field_));
       stresses_current_ = true;
       kept_fits_current_ = loop_kept_fits_;
@@ -383,9 +384,7 @@ class ElasticSolver {
   // Force the constraint exerts on particle i: what keeps a prescribed particle at its velocity
   // or a supported one off its normal (zero for free particles). The sum over an indenter's
   // particles, negated, is the load it applies.
-  vec_type reaction(std::size_t i) const {
-    return constraints_.reaction(i, force_[i] + external_[i] + mass_ * p_.gravity);
-  }
+  vec_type reaction(std::size_t i) const { return constraints_.reaction(i, force_[i] + external_[i] + mass_ * p_.gravity); }
 
   double kinetic_energy() const {
     double e = 0;
@@ -456,8 +455,7 @@ class ElasticSolver {
       detail::throw_invalid("ElasticSolver", "the checkpoint's arrays do not match its particle count");
     model_.checkpoint_restored(bonds_);
     if (p_.bond_viscosity > 0 && !model_adds_viscosity) viscosity_.initialize(bonds_);
-    stresses_current_ = false;
-    kept_fits_current_ = false;
+    stresses_current_ = kept_fits_current_ = false;
   }
 
  private:
@@ -487,7 +485,7 @@ class ElasticSolver {
   // returns whether it did.
   bool compute_forces(const VecArray<Dim, double>& x, const VecArray<Dim, double>& v, VecArray<Dim, double>& force,
                       MatArray<Dim, double>* stresses = nullptr) {
-    ask_for_kept_fits(x.size());
+    prepare_loop(x);
     const double viscosity =
         p_.bond_viscosity * p_.density * p_.p_wave_speed() * context_.volume * Dim / context_.n0;
     if constexpr (model_adds_viscosity) {
@@ -540,14 +538,15 @@ class ElasticSolver {
     return cut;
   }
 
-  // Asks the loop about to run on `n` particles to keep the A_i of the check's surface particles
-  // (marked at its first read); the kept fits become current only where the caller says so.
-  void ask_for_kept_fits(std::size_t n) {
-    kept_fits_current_ = false;
-    loop_kept_fits_ = false;
+  // Tells the stress model's loop about to run on x which particles it may skip (held) and asks
+  // it to keep the A_i of the check's surface particles (marked at its first read); the kept fits
+  // become current only where the caller says so.
+  void prepare_loop(const VecArray<Dim, double>& x) {
+    if constexpr (detail::skips_held<stress_model_type>::value) model_.skip_held(held_.mark(constraints_, bonds_, x));
+    kept_fits_current_ = loop_kept_fits_ = false;
     if constexpr (can_fail && detail::keeps_affine<stress_model_type>::value) {
       const auto& wanted = fracture_.surface_particles();
-      loop_kept_fits_ = p_.failure_stress_at_surface && wanted.size() == n;
+      loop_kept_fits_ = p_.failure_stress_at_surface && wanted.size() == x.size();
       model_.keep_affine(loop_kept_fits_ ? &wanted : nullptr);
     }
   }
@@ -583,6 +582,7 @@ class ElasticSolver {
   FieldHandle<mat_type> stress_field_;
   FieldHandle<double> damage_, principal_;
   ParticleConstraints<Dim> constraints_;
+  detail::HeldParticles<Dim> held_;  // the particles the stress model may skip
   VecArray<Dim, double> external_, force_;
   VecArray<Dim, double> x_next_, v_next_, force_next_;
   MatArray<Dim, double> stress_next_;  // the stresses of x_next_, when the stress model gives them

@@ -86,6 +86,11 @@ struct keeps_affine : std::false_type {};
 template <class Model>
 struct keeps_affine<Model, std::void_t<decltype(std::declval<Model&>().keep_affine(nullptr)),
                                        decltype(std::declval<const Model&>().kept_affine())>> : std::true_type {};
+// Whether its force loop can skip particles that are held (skip_held(), detail::HeldParticles).
+template <class Model, class = void>
+struct skips_held : std::false_type {};
+template <class Model>
+struct skips_held<Model, std::void_t<decltype(std::declval<Model&>().skip_held(nullptr))>> : std::true_type {};
 
 template <class M, int Dim, class = void>
 struct has_model_stresses : std::false_type {};

@@ -111,6 +111,8 @@ class PackedBonds {
   std::size_t num_groups() const { return (particles_ + lanes - 1) / lanes; }
   Offset begin(std::size_t group) const { return first_[group]; }
   Offset end(std::size_t group) const { return first_[group + 1]; }
+  // begin(g) for g = 0 .. num_groups(): the slots before each group.
+  const Offset* group_offsets() const { return first_.data(); }
   std::size_t longest_row() const { return longest_; }
   // The largest |i - j| over all bonds (cutting bonds never raises it): a loop over particles
   // lo..hi-1 touches no particle outside [lo - bandwidth, hi + bandwidth).
