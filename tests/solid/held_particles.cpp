@@ -55,7 +55,56 @@ struct ClampedBlock {
   int column(std::size_t i) const { return static_cast<int>(std::floor(set.positions()[i][0] / l0)); }
 };
 
+template <int Dim>
+struct EvaluatingModel : CorrectedTotalLagrangian<Dim> {
+  void skip_held(const std::vector<std::uint8_t>*) = delete;
+};
+template <int Dim>
+struct EvaluatingPolicies : SolidDefaults<Dim> {
+  using stress_model = EvaluatingModel<Dim>;
+};
+
+// A beam on two clamped supports, pressed in the middle by an indenter that moves down: three
+// bodies besides the beam, each all prescribed, so the solver's force loop skips them.
+template <int Dim, class Policies>
+ElasticSolver<Dim, Policies> pressed_beam(double l0, std::vector<std::size_t>& indenter) {
+  Vec<Dim> upper = Vec<Dim>::Constant(3 * l0);
+  upper[0] = 20 * l0;
+  upper[1] = 4 * l0;
+  ParticleSet<Dim> set = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
+  std::vector<std::int32_t> body(set.size(), 0);
+  auto add_block = [&](double x0, double y0, int id) {
+    for (int k = 0; k < (Dim == 3 ? 3 : 1); ++k)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 5; ++c) {
+          Vec<Dim> p = Vec<Dim>::Zero();
+          p[0] = x0 + (c + 0.5) * l0;
+          p[1] = y0 + (r + 0.5) * l0;
+          if constexpr (Dim == 3) p[2] = (k + 0.5) * l0;
+          const auto i = static_cast<std::size_t>(set.add(p, ParticleKind::solid));
+          body.push_back(id);
+          if (id == 3) indenter.push_back(i);
+        }
+  };
+  // One contact distance (l0) from the beam's outer rows.
+  add_block(0, -3 * l0, 1);
+  add_block(15 * l0, -3 * l0, 2);
+  add_block(7.5 * l0, 4 * l0, 3);
+  SolidParameters<Dim> p;
+  p.l0 = l0;
+  p.density = 1000;
+  p.youngs_modulus = 1e7;
+  p.poisson_ratio = 0.3;
+  ElasticSolver<Dim, Policies> s(set, p, body);
+  for (std::size_t i = 0; i < set.size(); ++i)
+    if (body[i] == 1 || body[i] == 2) s.clamp(i);
+  for (const std::size_t i : indenter) s.prescribe_velocity(i, -0.5 * Vec<Dim>::UnitY());
+  return s;
+}
+
 }  // namespace
+
+TEST_SUITE("solid") {
 
 TEST_CASE_TEMPLATE("solid.held_particles: held are the prescribed particles two bonds deep in an unstrained, "
                    "uniformly moving neighbourhood",
@@ -161,56 +210,6 @@ TEST_CASE_TEMPLATE("solid.held_particles: skipping the held particles changes no
   parallel::set_num_threads(saved);
 }
 
-namespace {
-
-template <int Dim>
-struct EvaluatingModel : CorrectedTotalLagrangian<Dim> {
-  void skip_held(const std::vector<std::uint8_t>*) = delete;
-};
-template <int Dim>
-struct EvaluatingPolicies : SolidDefaults<Dim> {
-  using stress_model = EvaluatingModel<Dim>;
-};
-
-// A beam on two clamped supports, pressed in the middle by an indenter that moves down: three
-// bodies besides the beam, each all prescribed, so the solver's force loop skips them.
-template <int Dim, class Policies>
-ElasticSolver<Dim, Policies> pressed_beam(double l0, std::vector<std::size_t>& indenter) {
-  Vec<Dim> upper = Vec<Dim>::Constant(3 * l0);
-  upper[0] = 20 * l0;
-  upper[1] = 4 * l0;
-  ParticleSet<Dim> set = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
-  std::vector<std::int32_t> body(set.size(), 0);
-  auto add_block = [&](double x0, double y0, int id) {
-    for (int k = 0; k < (Dim == 3 ? 3 : 1); ++k)
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 5; ++c) {
-          Vec<Dim> p = Vec<Dim>::Zero();
-          p[0] = x0 + (c + 0.5) * l0;
-          p[1] = y0 + (r + 0.5) * l0;
-          if constexpr (Dim == 3) p[2] = (k + 0.5) * l0;
-          const auto i = static_cast<std::size_t>(set.add(p, ParticleKind::solid));
-          body.push_back(id);
-          if (id == 3) indenter.push_back(i);
-        }
-  };
-  // One contact distance (l0) from the beam's outer rows.
-  add_block(0, -3 * l0, 1);
-  add_block(15 * l0, -3 * l0, 2);
-  add_block(7.5 * l0, 4 * l0, 3);
-  SolidParameters<Dim> p;
-  p.l0 = l0;
-  p.density = 1000;
-  p.youngs_modulus = 1e7;
-  p.poisson_ratio = 0.3;
-  ElasticSolver<Dim, Policies> s(set, p, body);
-  for (std::size_t i = 0; i < set.size(); ++i)
-    if (body[i] == 1 || body[i] == 2) s.clamp(i);
-  for (const std::size_t i : indenter) s.prescribe_velocity(i, -0.5 * Vec<Dim>::UnitY());
-  return s;
-}
-
-}  // namespace
 
 TEST_CASE_TEMPLATE("solid.held_particles: ElasticSolver gives the same motion and loads with the held bodies skipped",
                    T, std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
@@ -242,4 +241,6 @@ TEST_CASE_TEMPLATE("solid.held_particles: ElasticSolver gives the same motion an
   REQUIRE(std::abs(load) > 0);
   CHECK(worst < 1e-9 * travel);
   CHECK(std::abs(load_difference) < 1e-9 * std::abs(load));
+}
+
 }
