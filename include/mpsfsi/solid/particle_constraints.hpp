@@ -34,11 +34,9 @@ class ParticleConstraints {
   bool sized_for(std::size_t n) const { return kind_.size() == n && datum_.size() == n; }
 
   Constraint at(std::size_t i) const { return kind_[i]; }
-  // The velocity of a prescribed particle (zero for the others).
-  const vec_type& prescribed_velocity(std::size_t i) const {
-    static const vec_type none = vec_type::Zero();
-    return kind_[i] == Constraint::prescribed ? datum_[i] : none;
-  }
+  // The velocity of a prescribed particle (at(i) == Constraint::prescribed; for the others its
+  // datum means something else).
+  const vec_type& prescribed_velocity(std::size_t i) const { return datum_[i]; }
   void prescribe(std::size_t i, const vec_type& velocity) { set(i, Constraint::prescribed, velocity); }
   // No velocity along `normal` (finite, non-zero: the caller checks).
   void support(std::size_t i, const vec_type& normal) { set(i, Constraint::support, normal.normalized()); }
