@@ -102,6 +102,17 @@ struct JacobiPolicies : FluidDefaults<2> {
 };
 BENCHMARK_TEMPLATE(dam_break_step, JacobiPolicies)->Args({1, 100})->Args({2, 100})->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// SSOR-CG deflated by aggregates.
+struct DeflatedPolicies : FluidDefaults<2> {
+  using linear_solver = DeflatedSsorCg;
+};
+BENCHMARK_TEMPLATE(dam_break_step, DeflatedPolicies)
+    ->Args({1, 0})
+    ->Args({1, 100})
+    ->Args({2, 100})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 #if defined(MPSFSI_BENCH_HYPRE)
 struct AmgPolicies : FluidDefaults<2> {
   using linear_solver = HypreAmgCg;
@@ -120,6 +131,12 @@ BENCHMARK_TEMPLATE(dam_break_scaled, FluidDefaults<2>)
     ->Args({1, 1000000})
     ->Args({2, 1000000})
     ->Iterations(3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_TEMPLATE(dam_break_scaled, DeflatedPolicies)
+    ->Args({1, 100000})
+    ->Args({2, 100000})
+    ->Iterations(10)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 #if defined(MPSFSI_BENCH_HYPRE)

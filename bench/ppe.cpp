@@ -122,10 +122,12 @@ BENCHMARK_TEMPLATE(assemble, 2)->Apply(assembly_sizes);
 BENCHMARK_TEMPLATE(assemble, 3)->Apply(assembly_sizes);
 BENCHMARK_TEMPLATE(solve, 2, JacobiCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 2, SsorCg)->Apply(solve_sizes);
+BENCHMARK_TEMPLATE(solve, 2, DeflatedSsorCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 2, EigenJacobiCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 2, IncompleteCholeskyCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 3, JacobiCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 3, SsorCg)->Apply(solve_sizes);
+BENCHMARK_TEMPLATE(solve, 3, DeflatedSsorCg)->Apply(solve_sizes);
 BENCHMARK_TEMPLATE(solve, 3, IncompleteCholeskyCg)->Apply(solve_sizes);
 
 #if defined(MPSFSI_BENCH_HYPRE)

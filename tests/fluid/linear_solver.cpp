@@ -51,13 +51,14 @@ TEST_CASE("fluid.linear_solver: Jacobi CG solves an SPD system and reports non-c
 TEST_CASE("fluid.linear_solver: Eigen Jacobi CG, the reference") { check_solver<EigenJacobiCg>(); }
 TEST_CASE("fluid.linear_solver: incomplete Cholesky CG") { check_solver<IncompleteCholeskyCg>(); }
 
-TEST_CASE("fluid.linear_solver: SSOR CG (Eisenstat), on one, two and three threads") {
+TEST_CASE("fluid.linear_solver: SSOR CG (Eisenstat), plain and deflated, on one, two and three threads") {
   const int saved = parallel::max_threads();
   for (int threads : {1, 2, 3}) {
     CAPTURE(threads);
     parallel::set_num_threads(threads);
     if (parallel::max_threads() != threads) continue;  // a build without OpenMP
     check_solver<SsorCg>();
+    check_solver<DeflatedSsorCg>();
   }
   parallel::set_num_threads(saved);
 }
@@ -129,6 +130,73 @@ TEST_CASE("fluid.linear_solver: SSOR CG needs fewer iterations than Jacobi CG, f
   CHECK(rs.iterations * 2 < rj.iterations);
   // Both answers within kappa (< 1500 at m = 60) times the tolerance of each other.
   CHECK((xs - xj).norm() <= 2 * 1500 * 1e-10 * xj.norm());
+}
+
+TEST_CASE("fluid.linear_solver: SSOR CG deflated by aggregates needs fewer iterations, for the same answer") {
+  const int m = 60, n = m * m;
+  const PpeMatrix a = test::poisson_2d(m);
+  PpeVector b(n);
+  for (int i = 0; i < n; ++i) b[i] = 1.0 + std::cos(0.3 * i);
+  const int saved = parallel::max_threads();
+  for (int threads : {1, 2}) {
+    CAPTURE(threads);
+    parallel::set_num_threads(threads);
+    if (parallel::max_threads() != threads) continue;
+    SsorCg plain;
+    DeflatedSsorCg deflated;
+    PpeVector xp = PpeVector::Zero(n), xd = PpeVector::Zero(n);
+    const SolveReport rp = plain.solve(a, b, xp, 1e-10, 10000);
+    const SolveReport rd = deflated.solve(a, b, xd, 1e-10, 10000);
+    MESSAGE("60 x 60 Poisson, ", threads, " thread(s): SSOR-CG ", rp.iterations, " iterations, deflated ", rd.iterations);
+    REQUIRE(rp.converged);
+    REQUIRE(rd.converged);
+    // The reported residual is the true one of the answer returned (P b - P A x^ = b - A x).
+    CHECK((b - a * xd).norm() <= 2e-10 * b.norm());
+    // Both answers within kappa (< 1500 at m = 60) times the tolerance of each other.
+    CHECK((xd - xp).norm() <= 2 * 1500 * 1e-10 * xp.norm());
+    CHECK(rd.iterations < rp.iterations);
+  }
+  parallel::set_num_threads(saved);
+}
+
+TEST_CASE("fluid.linear_solver: deflated SSOR CG solves a right-hand side from the coarse space without iterating") {
+  // 1D Poisson: the greedy aggregation pairs the rows (row 0 takes row 1, row 2 takes row 3, ...).
+  // For x = Z y, piecewise constant on the pairs, b = A x is in the range of AZ: the projected
+  // residual P b vanishes and the answer is the coarse part Z E^-1 Z^T b alone, which must be x.
+  const int n = 40;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < n; ++i) {
+    entries.emplace_back(i, i, 2.0);
+    if (i > 0) entries.emplace_back(i, i - 1, -1.0);
+    if (i + 1 < n) entries.emplace_back(i, i + 1, -1.0);
+  }
+  PpeMatrix a(n, n);
+  a.setFromTriplets(entries.begin(), entries.end());
+  PpeVector exact(n);
+  for (int i = 0; i < n; ++i) exact[i] = 1.0 + std::sin(0.7 * (i / 2));
+  const PpeVector b = a * exact;
+  const int saved = parallel::max_threads();
+  for (int threads : {1, 2}) {
+    CAPTURE(threads);
+    parallel::set_num_threads(threads);
+    if (parallel::max_threads() != threads) continue;
+    DeflatedSsorCg solver;
+    PpeVector x = PpeVector::Zero(n);
+    const SolveReport r = solver.solve(a, b, x, 1e-12, 100);
+    CHECK(r.converged);
+    CHECK(r.iterations == 0);
+    // kappa(E) < 4 (n/2)^2 / pi^2 ~ 160 bounds the round-off of the coarse solve.
+    CHECK((x - exact).norm() <= 1e-12 * exact.norm());
+    // A right-hand side outside the coarse space still needs iterations, and converges.
+    PpeVector c = b;
+    c[7] += 1.0;
+    PpeVector y = PpeVector::Zero(n);
+    const SolveReport s = solver.solve(a, c, y, 1e-10, 100);
+    CHECK(s.converged);
+    CHECK(s.iterations > 0);
+    CHECK((c - a * y).norm() <= 2e-10 * c.norm());
+  }
+  parallel::set_num_threads(saved);
 }
 
 TEST_CASE("fluid.linear_solver: SSOR CG rejects bad input clearly") {

@@ -44,7 +44,7 @@ struct FluidDefaults {
   using weight = KoshizukaWeight;
   using gradient_correction = KhayyerGotohCorrection<Dim, double>;
   // SSOR-CG: 1.5-3.8x faster than Jacobi-CG on PPEs of 1e4 and 1e5 unknowns, 2D and 3D
-  // (docs/performance.md).
+  // (docs/performance.md). DeflatedSsorCg is faster on large 2D PPEs.
   using linear_solver = SsorCg;
   using free_surface = NumberDensitySurface;
   using collision = KoshizukaCollision;

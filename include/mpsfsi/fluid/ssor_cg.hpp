@@ -12,6 +12,7 @@
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
 #include "mpsfsi/core/parallel.hpp"
+#include "mpsfsi/fluid/detail/aggregate_deflation.hpp"
 #include "mpsfsi/fluid/linear_solver.hpp"
 
 namespace mpsfsi {
@@ -86,6 +87,13 @@ inline double sparse_row_dot(const double* val, const int* col, const double* v,
 // whole product on a 3D PPE of 1e5 unknowns (139 MB). The copies cost one more matrix of
 // memory; the CG vectors live in the new order, b and x are permuted in and out.
 //
+// Deflation (`deflation`, DeflatedSsorCg): CG on the deflated system P A x^ = P b
+// (detail::AggregateDeflation: Z the indicator vectors of aggregates of rows, E = Z^T A Z,
+// P = I - AZ E^-1 Z^T), SSOR-preconditioned in the same way. The operator of the transformed
+// system is then L~^-1 P A L~^-T v = t + L~^-1 (v + K t - AZ E^-1 (AZ)^T t): the coarse
+// correction enters the forward sweep's right-hand side. r0 is projected, and the answer is
+// x = Z E^-1 Z^T b + P^T x^, whose true residual is the deflated one that CG tracks.
+//
 // Converged when |r| <= tolerance |b| for r = L~ r^ (r^ the recursively updated residual of the
 // transformed system, so r is the recursively updated residual of A x = b, as in JacobiCg). r is
 // formed only when |r^| predicts convergence, using the ratio |r|/|r^| of the last time it was.
@@ -93,6 +101,8 @@ inline double sparse_row_dot(const double* val, const int* col, const double* v,
 class SsorCg {
  public:
   double omega = 1.6;  // relaxation factor in (0, 2); 1.6-1.7 measured best on the 2D PPE
+  // Deflate the piecewise constants over aggregates of rows (DeflatedSsorCg; see below).
+  bool deflation = false;
 
   SolveReport solve(const PpeMatrix& a, const PpeVector& b, PpeVector& x, double tolerance, int max_iterations) {
     if (!(omega > 0 && omega < 2)) detail::throw_invalid("SsorCg", "omega must lie in (0, 2), got " + detail::format_number(omega));
@@ -105,10 +115,11 @@ class SsorCg {
     }
     const int blocks = static_cast<int>(std::min<std::int64_t>(parallel::max_threads(), n));
     if (!split(a, blocks)) return SolveReport{false, 0, 1.0};
+    const bool deflate = deflation && deflation_.build(a, row_at_.data());
     // Work vectors in one block, offset from each other within a 4 KiB page (see JacobiCg); all
     // but x0 in the sweeps' order.
     const std::size_t stride = (static_cast<std::size_t>(n) + 511) / 512 * 512 + 24;
-    work_.resize(7 * stride + 8);
+    work_.resize(8 * stride + 8);
     double* const xh = work_.data();  // x^
     double* const r = xh + stride;    // r^
     double* const p = r + stride;
@@ -116,6 +127,7 @@ class SsorCg {
     double* const y = t + stride;  // L~^-1 (p + K t)
     double* const inv_dw = y + stride;
     double* const xs = inv_dw + stride;    // x in the sweeps' order
+    double* const w = xs + stride;         // the coarse correction AZ E^-1 (AZ)^T t
     const double* const dw = dw_.data();  // D/omega
     const int* const outer = a.outerIndexPtr();
     const int* const col = a.innerIndexPtr();
@@ -140,12 +152,19 @@ class SsorCg {
     }
     const double threshold = tolerance * tolerance * bb;
     if (rr <= threshold) return SolveReport{true, 0, std::sqrt(rr / bb)};
+    if (deflate) {  // r0 = P (b - A x0)
+      deflation_.project(y);
+      rr = 0;
+      MPSFSI_OMP(parallel for schedule(static) reduction(+ : rr))
+      for (std::int64_t k = 0; k < n; ++k) rr += y[k] * y[k];
+    }
     // x^ = L~^T x0.
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t k = 0; k < n; ++k) {
       inv_dw[k] = 1 / dw[k];
       xh[k] = dw[k] * xs[k] + detail::sparse_row_dot<false>(uval, ucol, xs, up[k], up[k + 1]);
       p[k] = 0;
+      w[k] = 0;
     }
     // r^ = L~^-1 r0, z = (D/omega) r^.
     double rz = 0, rrh = 0;
@@ -167,8 +186,8 @@ class SsorCg {
     };
     double beta = 0;
     int it = 0;
-    bool converged = false;
-    while (it < max_iterations) {
+    bool converged = rr <= threshold;  // with deflation: b - A x0 was in the range of AZ
+    while (!converged && it < max_iterations) {
       ++it;
       // p = z + beta p and t = L~^-T p, backward.
       backward_sweep([&](std::int64_t k) {
@@ -176,10 +195,12 @@ class SsorCg {
         p[k] = pk;
         t[k] = (pk - detail::sparse_row_dot<true>(uval, ucol, t, up[k], up[k + 1])) * inv_dw[k];
       });
-      // y = L~^-1 (p + K t), forward; q = A^ p = t + y.
+      // y = L~^-1 (p + K t - w), w = AZ E^-1 (AZ)^T t (zero without deflation), forward; q = t + y
+      // is A^ p, deflated: L~^-1 P A L~^-T p.
+      if (deflate) deflation_.coarse_correction(t, w);
       double pq = 0, unused = 0;
       forward_sweep(pq, unused, [&](std::int64_t k, double& pq_sum, double&) {
-        const double s = p[k] + k_factor * dw[k] * t[k];
+        const double s = p[k] + k_factor * dw[k] * t[k] - w[k];
         y[k] = (s - detail::sparse_row_dot<false>(lval, lcol, y, lo[k], lo[k + 1])) * inv_dw[k];
         pq_sum += p[k] * (t[k] + y[k]);
       });
@@ -209,6 +230,11 @@ class SsorCg {
     backward_sweep([&](std::int64_t k) {
       xs[k] = (xh[k] - detail::sparse_row_dot<true>(uval, ucol, xs, up[k], up[k + 1])) * inv_dw[k];
     });
+    if (deflate) {  // x = Z E^-1 Z^T b + P^T x^, b in the sweeps' order (into y)
+      MPSFSI_OMP(parallel for schedule(static))
+      for (std::int64_t k = 0; k < n; ++k) y[k] = b[row_at_[static_cast<std::size_t>(k)]];
+      deflation_.finish(y, xs);
+    }
     MPSFSI_OMP(parallel for schedule(static))
     for (std::int64_t i = 0; i < n; ++i) x[i] = xs[position[i]];
     if (!converged) rr = residual_norm2();  // where the iteration stopped
@@ -408,6 +434,14 @@ class SsorCg {
   std::vector<std::int64_t> lower_first_, upper_first_;  // row offsets into the copies
   std::vector<int> lower_col_, upper_col_;
   std::vector<double> lower_val_, upper_val_, dw_;
+  detail::AggregateDeflation deflation_;
+};
+
+// SSOR-CG deflated by aggregates, the default linear solver of the 2D fluid: on the 2D dam-break
+// PPE 18 iterations instead of 44, on a 2D PPE of 1e5 unknowns 25 instead of 208 and 2.3 times
+// faster; in 3D the coarse matrix costs more than the iterations save (docs/performance.md).
+struct DeflatedSsorCg : SsorCg {
+  DeflatedSsorCg() { deflation = true; }
 };
 
 }  // namespace MPSFSI_ABI
