@@ -88,25 +88,18 @@ class AggregateDeflation {
       double* const vals = az_val_.data() + outer[i];
       const auto thread = static_cast<std::size_t>(parallel::thread_id());
       int* const mark = place_.data() + thread * static_cast<std::size_t>(m);
-      // Entry e adds to copy e mod 4 of the sums: neighbouring entries are often in one
-      // aggregate, and with one copy each addition waited for the last one's.
       double* const sum = sum_.data() + thread * copies * static_cast<std::size_t>(m);
       int count = 0;
       for (int e = outer[i]; e < outer[i + 1]; ++e) {
         const int c = aggregate_of_row_[static_cast<std::size_t>(col[e])];
-        sum[static_cast<std::size_t>(e % copies) * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)] += val[e];
+        sum[c] += val[e];
         cols[count] = c;
         count += 1 - mark[c];
         mark[c] = 1;
       }
       for (int q = 0; q < count; ++q) {
-        double total = 0;
-        for (std::size_t copy = 0; copy < copies; ++copy) {
-          double& part = sum[copy * static_cast<std::size_t>(m) + static_cast<std::size_t>(cols[q])];
-          total += part;
-          part = 0.0;
-        }
-        vals[q] = total;
+        vals[q] = sum[cols[q]];
+        sum[cols[q]] = 0.0;
         mark[cols[q]] = 0;
       }
       az_count_[static_cast<std::size_t>(k)] = count;
@@ -132,7 +125,7 @@ class AggregateDeflation {
     // AZ); written straight into E's compressed columns, each sorted by row.
     coarse_.resize(m, m);
     coarse_.resizeNonZeros(0);
-    coarse_.reserve(static_cast<Eigen::Index>(std::min<std::int64_t>(static_cast<std::int64_t>(m) * m, a.nonZeros())));
+    coarse_.reserve(static_cast<Eigen::Index>(total));  // E has at most AZ's entries
     int* const mark = place_.data();
     double* const sum = sum_.data();
     Eigen::Index nonzeros = 0;
