@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// What each of the two translation units of mpsfsi_abi_tests reports. No mpsfsi type crosses
+// What each of the translation units of mpsfsi_abi_tests reports. No mpsfsi type crosses
 // between them: each is compiled for another instruction set.
 #pragma once
 
@@ -12,5 +12,6 @@ struct AbiReport {
   std::vector<double> positions;  // x and y of every particle after the run
 };
 
-AbiReport run_with_avx();   // abi_avx.cpp, built with -mavx2 -mfma
-AbiReport run_with_sse2();  // abi_sse2.cpp, built with -mno-avx
+AbiReport run_with_avx512();  // abi_avx512.cpp, built with -march=x86-64-v4 (where the compiler has it)
+AbiReport run_with_avx();     // abi_avx.cpp, built with -mavx2 -mfma
+AbiReport run_with_sse2();    // abi_sse2.cpp, built with -mno-avx

@@ -18,14 +18,14 @@ namespace {
 
 const LameConstants<double> kLame{1.5e6, 1.0e6};
 
-// A block of 16 x 5 (x 3) cells whose first 8 columns are prescribed with one velocity and sit
+// A block of 24 x 5 (x 3) cells whose first 12 columns are prescribed with one velocity and sit
 // at their reference sites shifted by a common translation; the rest is deformed at random. With
 // re = 2.1 l0 a bond spans at most two columns, so a clamped particle is quiet when its column is
-// at least two from the free part (columns 0-5), and held when at least four (columns 0-3): in
-// rows of 16, whole groups of the force loop for 2, 4 and 8 lanes.
+// at least two from the free part (columns 0-9), and held when at least four (columns 0-7): in
+// rows of 24, whole groups of the force loop for 2, 4 and 8 lanes.
 template <int Dim>
 struct ClampedBlock {
-  static constexpr int columns = 16, clamped_columns = 8, last_held_column = 3;
+  static constexpr int columns = 24, clamped_columns = 12, last_held_column = 7;
   double l0 = 0.01;
   ParticleSet<Dim> set;
   BondList<Dim> bonds;

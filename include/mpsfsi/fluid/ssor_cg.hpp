@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
@@ -197,13 +198,22 @@ class SsorCg {
       });
       // y = L~^-1 (p + K t - w), w = AZ E^-1 (AZ)^T t (zero without deflation), forward; q = t + y
       // is A^ p, deflated: L~^-1 P A L~^-T p.
-      if (deflate) deflation_.coarse_correction(t, w);
+      // Two instances, so the plain solver does not stream the zeros of w.
       double pq = 0, unused = 0;
-      forward_sweep(pq, unused, [&](std::int64_t k, double& pq_sum, double&) {
-        const double s = p[k] + k_factor * dw[k] * t[k] - w[k];
-        y[k] = (s - detail::sparse_row_dot<false>(lval, lcol, y, lo[k], lo[k + 1])) * inv_dw[k];
-        pq_sum += p[k] * (t[k] + y[k]);
-      });
+      auto forward_with = [&](auto coarse) {
+        forward_sweep(pq, unused, [&](std::int64_t k, double& pq_sum, double&) {
+          double s = p[k] + k_factor * dw[k] * t[k];
+          if constexpr (decltype(coarse)::value) s -= w[k];
+          y[k] = (s - detail::sparse_row_dot<false>(lval, lcol, y, lo[k], lo[k + 1])) * inv_dw[k];
+          pq_sum += p[k] * (t[k] + y[k]);
+        });
+      };
+      if (deflate) {
+        deflation_.coarse_correction(t, w);
+        forward_with(std::true_type{});
+      } else {
+        forward_with(std::false_type{});
+      }
       if (!(pq > 0)) break;  // the matrix is not positive definite along p
       const double alpha = rz / pq;
       double rz_new = 0;

@@ -54,8 +54,12 @@ class CorrectedTotalLagrangian {
   using fit_type = DeformationFit<Dim, Scalar>;
   using affine_type = typename fit_type::affine_type;
   static constexpr int width = fit_type::width;
-  // Particles per SIMD step of the force loop: one register of doubles (core/abi.hpp).
-  static constexpr int lanes = simd_double_lanes;
+  // Particles per group of the force loop: one register of doubles (core/abi.hpp), but 8 in 3D
+  // where a register holds 4 or more. A 3D particle's fit (3 x 9 sums, a 9 x 9 M^+) is a long
+  // chain of dependent multiply-adds, and two AVX2 registers a value keep twice as many chains in
+  // flight: the 3D fracture step ran in 0.8 of the time with 8 lanes on AVX2, while 2D (1.05) and
+  // 8 lanes on SSE2 (1.1-1.2) did not gain (docs/performance.md, the solid's force loop).
+  static constexpr int lanes = Dim == 3 && simd_double_lanes >= 4 ? 8 : simd_double_lanes;
 
   Scalar stabilization = Scalar(0.1);  // alpha
 
