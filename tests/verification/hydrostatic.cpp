@@ -207,9 +207,9 @@ struct OwnValueGradientPolicies : CentroidSurfacePolicies {
 // checks of the 1.5 m case below. The step is 2 ms at l0 = 10 mm and scales with l0 (the same
 // Courant number for the same flow).
 template <class Policies = CentroidSurfacePolicies>
-void check_water_under_lid_under_structure(double lid_length, double l0 = 0.01) {
+void check_water_under_lid_under_structure(double lid_length, double l0 = 0.01, double end = 2.0) {
   const double dt = 2e-3 * l0 / 0.01;
-  const auto r = water_under_lid<Policies>(lid_length, l0, 0.3, 2.0, 2.0, dt, WallCondition::neumann, false);
+  const auto r = water_under_lid<Policies>(lid_length, l0, 0.3, end, end, dt, WallCondition::neumann, false);
   scenes::FloatingIceBeam scene;
   scene.thickness = 8 * l0;
   const double head = scene.open_water_level(l0) - (scene.beam_bottom(l0) + 0.5 * l0);
@@ -217,7 +217,7 @@ void check_water_under_lid_under_structure(double lid_length, double l0 = 0.01) 
   const bool own_value = Policies::pressure_gradient_reference == GradientReference::own_value;
   MESSAGE("settings for water under a structure" << std::string(own_value ? " with the own-value gradient" : "")
           << ": water under a " << lid_length << " m lid, l0 = " << 1e3 * l0 << " mm: mean lid load over 0.3-"
-          << (r.stopped >= 0 ? r.stopped : 2.0) << " s / hydrostatic = " << r.load_ratio
+          << (r.stopped >= 0 ? r.stopped : end) << " s / hydrostatic = " << r.load_ratio
           << " (with P = 0 on the surface particles: " << offset_reference
           << "), steps with a lid particle at the free surface: " << r.steps_parted << " of " << r.steps
           << "; first parting at t = " << r.first_parted << " s, fastest fluid " << r.fastest << " m/s"
@@ -327,6 +327,16 @@ TEST_CASE("validation.fluid: water under a 3 m lid with the settings and the own
 
 TEST_CASE("validation.fluid: water under a 5.06 m lid with the settings and the own-value gradient") {
   check_water_under_lid_under_structure<OwnValueGradientPolicies>(5.06);
+}
+
+// The 5.06 m lid held over 10 s instead of 2 s: a known limitation (docs/validation/fsi.md, open
+// problems). The open water beyond the lid's far end sloshes with a growing amplitude, the lid's
+// load climbs above hydrostatic, and the water under the lid's far corner bursts after about 4 s.
+// A floating beam loaded slowly enough to be quasi-static needs tens of seconds. Marked
+// should_fail, to be turned into a plain test once the water holds.
+TEST_CASE("validation.fluid: water under a 5.06 m lid with the settings and the own-value gradient for 10 s "
+          "(known limitation)" * doctest::should_fail()) {
+  check_water_under_lid_under_structure<OwnValueGradientPolicies>(5.06, 0.01, 10.0);
 }
 
 TEST_CASE("validation.fluid: water under a 1.5 m lid at l0 = 5 mm with the settings and the own-value gradient "
