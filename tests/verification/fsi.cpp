@@ -104,7 +104,6 @@ double plate_alone(const scenes::HydrostaticPlate& scene, double l0, double t_en
   return y0 - plate.particles().positions()[middle][1];
 }
 
-
 // The floating beam of scenes::FloatingIceBeam (h = 80 mm, l0 = 10 mm: 5.06 m of ice on 0.25 m of
 // water), its loaded end on a roller against the tank wall, no load, coupled by the explicit
 // scheme with the settings for water under a structure (docs/theory.md, section 2.9), the
@@ -249,7 +248,7 @@ TEST_CASE("floating beam: the explicit scheme needs the ice's inertia scaled pas
   // inertia and hold at 5,000. Measured: it fails at 2,000 and holds at 3,000. Unstable: a
   // failed step or a step's load 50 % off the weight (as in the test above). Stable: no failed
   // step and every 0.05 s mean of the load within 5 % of the weight. Single steps scatter by up
-  // to 15 % (the pressure noise of the 2 ms step), so the blocks, not the steps, are judged. The
+  // to 15 % (measured at 5,000), so the blocks, not the steps, are judged. The
   // bounds separate stable from unstable; they are not accuracy bounds.
   const auto light = floating_beam_explicit(1000, 0.2, 0.0);
   CHECK((light.blew_up || light.max_load_deviation > 0.5));
