@@ -311,6 +311,15 @@ TEST_CASE("validation.fluid: water under a 3 m lid with the settings for water u
   check_water_under_lid_under_structure(3.0);
 }
 
+// The 1.5 m lid of the default suite's case held over 10 s instead of 2 s: a known limitation
+// (docs/validation/fluid.md, "Water under a structure"). The water stays on the lid, but its mean
+// load falls more than 3 % below the reference: exactly that one check is expected to fail while
+// it stands.
+TEST_CASE("validation.fluid: water under a 1.5 m lid with the settings for water under a structure for 10 s "
+          "(known limitation)" * doctest::expected_failures(1)) {
+  check_water_under_lid_under_structure(1.5, 0.01, 10.0);
+}
+
 TEST_CASE("validation.fluid: water under a 1.5 m lid at l0 = 5 mm with the settings for water under a structure "
           "(known limitation)" * doctest::should_fail()) {
   check_water_under_lid_under_structure(1.5, 0.005);
