@@ -13,6 +13,7 @@
 
 #include "mpsfsi/fluid/fluid_solver.hpp"
 #include "mpsfsi/scenes/dam_break.hpp"
+#include "support/water_under_structure.hpp"
 
 using namespace mpsfsi;
 
@@ -128,14 +129,10 @@ TEST_CASE("verification.fluid: dam break 2D with Neumann walls") {
   dam_break_2d(WallCondition::neumann);
 }
 
-struct CentroidSurfacePolicies : FluidDefaults<2> {
-  using free_surface = CentroidDeviationSurface<>;
-};
-
 TEST_CASE("verification.fluid: dam break 2D with the settings for water under a structure") {
   // The same case and tolerances with Neumann walls, CentroidDeviationSurface and the full density
   // term, the settings that keep water under a lid (hydrostatic.cpp).
-  dam_break_2d<CentroidSurfacePolicies>(WallCondition::neumann, false);
+  dam_break_2d<test::WaterUnderStructurePolicies<2>>(WallCondition::neumann, false);
 }
 
 TEST_CASE("verification.fluid: dam break 3D at coarse resolution runs to completion") {
@@ -162,15 +159,10 @@ TEST_CASE("verification.fluid: dam break 3D at coarse resolution runs to complet
 
 TEST_SUITE("validation.fluid") {
 
-struct OwnValueGradientPolicies : FluidDefaults<2> {
-  using free_surface = CentroidDeviationSurface<>;
-  static constexpr GradientReference pressure_gradient_reference = GradientReference::own_value;
-};
-
 TEST_CASE("validation.fluid: dam break 2D with the settings and the own-value gradient") {
   // The same case and tolerances with the settings for water under a structure and the pressure
   // gradient taken about each particle's own pressure (hydrostatic.cpp, water under a long lid).
-  dam_break_2d<OwnValueGradientPolicies>(WallCondition::neumann, false);
+  dam_break_2d<test::OwnValueGradientPolicies<2>>(WallCondition::neumann, false);
 }
 
 }  // TEST_SUITE

@@ -19,6 +19,7 @@
 #include "mpsfsi/scenes/tank.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 #include "support/tolerance.hpp"
+#include "support/water_under_structure.hpp"
 
 using namespace mpsfsi;
 
@@ -117,11 +118,6 @@ struct FloatingBeamResult {
   bool blew_up = false;
 };
 
-struct WaterUnderStructure : FluidDefaults<2> {
-  using free_surface = CentroidDeviationSurface<>;
-  static constexpr GradientReference pressure_gradient_reference = GradientReference::own_value;
-};
-
 FloatingBeamResult floating_beam_explicit(double inertia_scale, double t_end, double window_start) {
   scenes::FloatingIceBeam scene;
   scene.thickness = 0.08;
@@ -145,7 +141,7 @@ FloatingBeamResult floating_beam_explicit(double inertia_scale, double t_end, do
   fp.wall_condition = WallCondition::neumann;
   fp.density_term_compression_only = false;
   fp.negative_pressure = NegativePressure::keep;
-  FsiCoupler<FluidSolver<2, WaterUnderStructure>, ElasticSolver<2>, ExplicitPartitioned> coupler(
+  FsiCoupler<FluidSolver<2, test::OwnValueGradientPolicies<2>>, ElasticSolver<2>, ExplicitPartitioned> coupler(
       scene.fluid_particles(l0), fp, std::move(ice));
   const double weight = scene.ice_density * scene.gravity * scene.thickness * scene.beam_length_for(l0);
   FloatingBeamResult r;

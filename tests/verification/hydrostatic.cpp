@@ -12,6 +12,7 @@
 #include "mpsfsi/scenes/floating_ice_beam.hpp"
 #include "mpsfsi/scenes/tank.hpp"
 #include "support/tolerance.hpp"
+#include "support/water_under_structure.hpp"
 
 using namespace mpsfsi;
 
@@ -121,11 +122,13 @@ void run_hydrostatic(double width, double depth, double l0, double settle, doubl
 // load relative to that, and the steps with a lid particle at the free surface; over the whole
 // run (to `end`): the first time a lid particle is at the free surface, where along the lid
 // (the smallest and largest x of those at the free surface then; the lid's closed end is at the
-// tank wall, x = 0), and the fastest fluid. A run the solver stops (a blow-up, a step above the
+// tank wall, x = 0), the fastest fluid, and the first time water is above the lid's top face (it
+// came over the lid's far end). A run the solver stops (a blow-up, a step above the
 // stability limit) ends there: `stopped` is the time of the last completed step and `stop` the
 // solver's message.
 struct LidResult {
   double load_ratio = 0, first_parted = -1, first_parted_from = -1, first_parted_to = -1, fastest = 0;
+  double first_over = -1;  // the first time a fluid particle is above the lid's top face
   int steps_parted = 0, steps = 0;
   double stopped = -1;
   std::string stop;
@@ -169,7 +172,10 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
     bool parted = false;
     double parted_from = -1, parted_to = -1;
     for (std::size_t i = 0; i < ps.size(); ++i) {
-      if (ps.kinds()[i] == ParticleKind::fluid) r.fastest = std::max(r.fastest, ps.velocities()[i].norm());
+      if (ps.kinds()[i] == ParticleKind::fluid) {
+        r.fastest = std::max(r.fastest, ps.velocities()[i].norm());
+        if (r.first_over < 0 && ps.positions()[i][1] > top) r.first_over = solver.time();
+      }
       if (i < first || ps.kinds()[i] != ParticleKind::wall || std::abs(ps.positions()[i][1] - (yb + 0.5 * l0)) > 1e-9)
         continue;
       load += solver.pressure()[i] * l0;
@@ -194,19 +200,10 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
   return r;
 }
 
-// The policies of the settings for water under a structure (docs/theory.md, section 2.9), and the
-// same with the pressure gradient taken about each particle's own pressure.
-struct CentroidSurfacePolicies : FluidDefaults<2> {
-  using free_surface = CentroidDeviationSurface<>;
-};
-struct OwnValueGradientPolicies : CentroidSurfacePolicies {
-  static constexpr GradientReference pressure_gradient_reference = GradientReference::own_value;
-};
-
 // Water under a lid of `lid_length` with the settings for water under a structure, to 2 s: the
 // checks of the 1.5 m case below. The step is 2 ms at l0 = 10 mm and scales with l0 (the same
 // Courant number for the same flow).
-template <class Policies = CentroidSurfacePolicies>
+template <class Policies = test::WaterUnderStructurePolicies<2>>
 void check_water_under_lid_under_structure(double lid_length, double l0 = 0.01, double end = 2.0) {
   const double dt = 2e-3 * l0 / 0.01;
   const auto r = water_under_lid<Policies>(lid_length, l0, 0.3, end, end, dt, WallCondition::neumann, false);
@@ -221,6 +218,7 @@ void check_water_under_lid_under_structure(double lid_length, double l0 = 0.01, 
           << " (with P = 0 on the surface particles: " << offset_reference
           << "), steps with a lid particle at the free surface: " << r.steps_parted << " of " << r.steps
           << "; first parting at t = " << r.first_parted << " s, fastest fluid " << r.fastest << " m/s"
+          << "; water over the lid's top first at t = " << r.first_over << " s (-1: never)"
           << (r.stopped >= 0 ? "; stopped after t = " + std::to_string(r.stopped) + " s: " + r.stop : std::string()));
   CHECK(r.stopped < 0);
   CHECK(r.first_parted < 0);
@@ -276,7 +274,8 @@ TEST_CASE("verification.fluid: water under a lid with Neumann walls: the water s
 // structure"): Neumann walls, CentroidDeviationSurface and the full density term. The open tank,
 // same case and tolerances.
 TEST_CASE("verification.fluid: hydrostatic tank 2D with the settings for water under a structure") {
-  run_hydrostatic<2, CentroidSurfacePolicies>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann, false);
+  run_hydrostatic<2, test::WaterUnderStructurePolicies<2>>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann,
+                                                           false);
 }
 
 // The same settings under the lid, run to 2 s. The reference load takes P = 0 where the solver
@@ -331,11 +330,11 @@ TEST_CASE("validation.fluid: water under a 1.5 m lid at l0 = 5 mm with the setti
 // water holds (the run does not stop, no lid particle at P = 0) but the load is 5 % above the
 // reference: exactly that one check is expected to fail while it stands.
 TEST_CASE("validation.fluid: water under a 3 m lid with the settings and the own-value gradient") {
-  check_water_under_lid_under_structure<OwnValueGradientPolicies>(3.0);
+  check_water_under_lid_under_structure<test::OwnValueGradientPolicies<2>>(3.0);
 }
 
 TEST_CASE("validation.fluid: water under a 5.06 m lid with the settings and the own-value gradient") {
-  check_water_under_lid_under_structure<OwnValueGradientPolicies>(5.06);
+  check_water_under_lid_under_structure<test::OwnValueGradientPolicies<2>>(5.06);
 }
 
 // The 5.06 m lid held over 10 s instead of 2 s: a known limitation (docs/validation/fsi.md, open
@@ -345,12 +344,12 @@ TEST_CASE("validation.fluid: water under a 5.06 m lid with the settings and the 
 // should_fail, to be turned into a plain test once the water holds.
 TEST_CASE("validation.fluid: water under a 5.06 m lid with the settings and the own-value gradient for 10 s "
           "(known limitation)" * doctest::should_fail()) {
-  check_water_under_lid_under_structure<OwnValueGradientPolicies>(5.06, 0.01, 10.0);
+  check_water_under_lid_under_structure<test::OwnValueGradientPolicies<2>>(5.06, 0.01, 10.0);
 }
 
 TEST_CASE("validation.fluid: water under a 1.5 m lid at l0 = 5 mm with the settings and the own-value gradient "
           "(known limitation)" * doctest::expected_failures(1)) {
-  check_water_under_lid_under_structure<OwnValueGradientPolicies>(1.5, 0.005);
+  check_water_under_lid_under_structure<test::OwnValueGradientPolicies<2>>(1.5, 0.005);
 }
 
 // What the own-value gradient costs in the open tank (docs/validation/fluid.md): the pressure
@@ -358,7 +357,7 @@ TEST_CASE("validation.fluid: water under a 1.5 m lid at l0 = 5 mm with the setti
 // one check is expected to fail while it stands.
 TEST_CASE("validation.fluid: hydrostatic tank 2D with the settings and the own-value gradient (known limitation)" *
           doctest::expected_failures(1)) {
-  run_hydrostatic<2, OwnValueGradientPolicies>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann, false);
+  run_hydrostatic<2, test::OwnValueGradientPolicies<2>>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann, false);
 }
 
 }  // TEST_SUITE
