@@ -122,13 +122,15 @@ void run_hydrostatic(double width, double depth, double l0, double settle, doubl
 // load relative to that, and the steps with a lid particle at the free surface; over the whole
 // run (to `end`): the first time a lid particle is at the free surface, where along the lid
 // (the smallest and largest x of those at the free surface then; the lid's closed end is at the
-// tank wall, x = 0), the fastest fluid, and the first time water is above the lid's top face (it
-// came over the lid's far end). A run the solver stops (a blow-up, a step above the
-// stability limit) ends there: `stopped` is the time of the last completed step and `stop` the
-// solver's message.
+// tank wall, x = 0), the fastest fluid, the first time water is above the lid's top face (it came
+// over the lid's far end), and the fluid particles under the lid at the start and the end (below
+// its bottom, more than 2 l0 from its far end). A run the solver stops (a blow-up, a step above
+// the stability limit) ends there: `stopped` is the time of the last completed step and `stop`
+// the solver's message.
 struct LidResult {
   double load_ratio = 0, first_parted = -1, first_parted_from = -1, first_parted_to = -1, fastest = 0;
   double first_over = -1;  // the first time a fluid particle is above the lid's top face
+  std::size_t under_start = 0, under_end = 0;  // fluid particles under the lid at the start and the end
   int steps_parted = 0, steps = 0;
   double stopped = -1;
   std::string stop;
@@ -158,6 +160,14 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
   const double rho_g = p.density * p.gravity.norm();
   const double hydrostatic = rho_g * (scene.open_water_level(l0) - (yb + 0.5 * l0)) * L;  // per unit width
   LidResult r;
+  auto count_under = [&](const ParticleSet<2>& ps) {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (ps.kinds()[i] == ParticleKind::fluid && ps.positions()[i][1] < yb && ps.positions()[i][0] < L - 2 * l0)
+        ++count;
+    return count;
+  };
+  r.under_start = count_under(solver.particles());
   double load_sum = 0;
   while (solver.time() < end - 1e-9) {
     try {
@@ -197,6 +207,7 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
     ++r.steps;
   }
   r.load_ratio = r.steps > 0 ? load_sum / r.steps / hydrostatic : 0.0;
+  r.under_end = count_under(solver.particles());
   return r;
 }
 
@@ -218,7 +229,8 @@ void check_water_under_lid_under_structure(double lid_length, double l0 = 0.01, 
           << " (with P = 0 on the surface particles: " << offset_reference
           << "), steps with a lid particle at the free surface: " << r.steps_parted << " of " << r.steps
           << "; first parting at t = " << r.first_parted << " s, fastest fluid " << r.fastest << " m/s"
-          << "; water over the lid's top first at t = " << r.first_over << " s (-1: never)"
+          << "; water over the lid's top first at t = " << r.first_over << " s (-1: never); fluid particles "
+          << "under the lid " << r.under_start << " at the start, " << r.under_end << " at the end"
           << (r.stopped >= 0 ? "; stopped after t = " + std::to_string(r.stopped) + " s: " + r.stop : std::string()));
   CHECK(r.stopped < 0);
   CHECK(r.first_parted < 0);
