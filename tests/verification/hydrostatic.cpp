@@ -124,13 +124,16 @@ void run_hydrostatic(double width, double depth, double l0, double settle, doubl
 // (the smallest and largest x of those at the free surface then; the lid's closed end is at the
 // tank wall, x = 0), the fastest fluid, the first time water is above the lid's top face (it came
 // over the lid's far end), and the fluid particles under the lid at the start and the end (below
-// its bottom, more than 2 l0 from its far end). A run the solver stops (a blow-up, a step above
+// its bottom, more than 2 l0 from its far end), and how far the open water's surface rose (the
+// mean over its columns of the highest fluid particle, from the start to the end; the water
+// under the lid can only push it up by taking more room or losing particles). A run the solver stops (a blow-up, a step above
 // the stability limit) ends there: `stopped` is the time of the last completed step and `stop`
 // the solver's message.
 struct LidResult {
   double load_ratio = 0, first_parted = -1, first_parted_from = -1, first_parted_to = -1, fastest = 0;
   double first_over = -1;  // the first time a fluid particle is above the lid's top face
   std::size_t under_start = 0, under_end = 0;  // fluid particles under the lid at the start and the end
+  double open_rise = 0;                        // rise of the open water's surface from the start to the end, m
   int steps_parted = 0, steps = 0;
   double stopped = -1;
   std::string stop;
@@ -167,7 +170,22 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
         ++count;
     return count;
   };
+  const double tank_end = scene.tank_length(l0);
+  auto open_level = [&](const ParticleSet<2>& ps) {
+    const auto columns = static_cast<std::size_t>(std::llround((tank_end - L) / l0));
+    std::vector<double> column_top(columns, -1.0);
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      const Vec<2>& x = ps.positions()[i];
+      if (ps.kinds()[i] != ParticleKind::fluid || x[0] <= L) continue;
+      const auto c = std::min(columns - 1, static_cast<std::size_t>((x[0] - L) / l0));
+      column_top[c] = std::max(column_top[c], x[1]);
+    }
+    double sum = 0;
+    for (double top_of_column : column_top) sum += top_of_column;
+    return sum / static_cast<double>(columns);
+  };
   r.under_start = count_under(solver.particles());
+  const double open_start = open_level(solver.particles());
   double load_sum = 0;
   while (solver.time() < end - 1e-9) {
     try {
@@ -208,6 +226,7 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
   }
   r.load_ratio = r.steps > 0 ? load_sum / r.steps / hydrostatic : 0.0;
   r.under_end = count_under(solver.particles());
+  r.open_rise = open_level(solver.particles()) - open_start;
   return r;
 }
 
@@ -231,6 +250,7 @@ void check_water_under_lid_under_structure(double lid_length, double l0 = 0.01, 
           << "; first parting at t = " << r.first_parted << " s, fastest fluid " << r.fastest << " m/s"
           << "; water over the lid's top first at t = " << r.first_over << " s (-1: never); fluid particles "
           << "under the lid " << r.under_start << " at the start, " << r.under_end << " at the end"
+          << "; the open water's surface rose by " << r.open_rise / l0 << " l0"
           << (r.stopped >= 0 ? "; stopped after t = " + std::to_string(r.stopped) + " s: " + r.stop : std::string()));
   CHECK(r.stopped < 0);
   CHECK(r.first_parted < 0);
