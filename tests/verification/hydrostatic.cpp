@@ -126,9 +126,9 @@ void run_hydrostatic(double width, double depth, double l0, double settle, doubl
 // over the lid's far end), and the fluid particles under the lid at the start and the end (below
 // its bottom, more than 2 l0 from its far end), and how far the open water's surface rose (the
 // mean over its columns of the highest fluid particle, from the start to the end; the water
-// under the lid can only push it up by taking more room or losing particles). A run the solver stops (a blow-up, a step above
-// the stability limit) ends there: `stopped` is the time of the last completed step and `stop`
-// the solver's message.
+// under the lid can only push it up by taking more room or losing particles). A run the solver
+// stops (a blow-up, a step above the stability limit) ends there: `stopped` is the time of the
+// last completed step and `stop` the solver's message.
 struct LidResult {
   double load_ratio = 0, first_parted = -1, first_parted_from = -1, first_parted_to = -1, fastest = 0;
   double first_over = -1;  // the first time a fluid particle is above the lid's top face
