@@ -2,7 +2,7 @@
 # Builds everything and runs the default test suite (unit, verification, examples, quick start,
 # package, benchmark smoke tests). Long validation runs carry the CTest label "validation" and are
 # excluded here:
-#   ctest --test-dir build -L validation -LE long   # about 40 minutes on 2 cores
+#   ctest --test-dir build -L validation -LE long   # about 45 minutes on 2 cores
 #   ctest --test-dir build -L long                  # the coupled plate at h/l0 = 24 and the 3D bending beam, about 35-50 minutes
 set -euo pipefail
 cd "$(dirname "$0")/.."
