@@ -153,11 +153,10 @@ FloatingBeamResult floating_beam(double inertia_scale, double dt, double t_end, 
       scene.fluid_particles(l0), fp, std::move(ice), cp);
   const double weight = scene.ice_density * scene.gravity * scene.thickness * scene.beam_length_for(l0);
   const auto& ice_x = coupler.solid().particles().positions();
-  std::size_t far_corner = 0;
-  for (std::size_t i = 0; i < ice_x.size(); ++i)
-    if (ice_x[i][0] > ice_x[far_corner][0] + 1e-9 ||
-        (std::abs(ice_x[i][0] - ice_x[far_corner][0]) <= 1e-9 && ice_x[i][1] < ice_x[far_corner][1]))
-      far_corner = i;
+  const double far_end = scene.beam_length_for(l0) - l0, bottom_row = scene.beam_bottom(l0) + l0;
+  const std::size_t far_corner = scenes::select(coupler.solid().particles(), [&](const Vec<2>& x) {
+    return x[0] > far_end && x[1] < bottom_row;
+  })[0];
   const double far_corner_y0 = ice_x[far_corner][1];
   FloatingBeamResult r;
   int samples = 0, block_samples = 0;
