@@ -3,7 +3,7 @@
 # package, benchmark smoke tests). Long validation runs carry the CTest label "validation" and are
 # excluded here:
 #   ctest --test-dir build -L validation -LE long   # about 45 minutes on 2 cores
-#   ctest --test-dir build -L long                  # the coupled plate at h/l0 = 24 and the 3D bending beam, about 35-50 minutes
+#   ctest --test-dir build -L long                  # the coupled plate at h/l0 = 24, the 3D bending beam and the loaded floating beam, about 50-60 minutes
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${MPSFSI_CMAKE_ARGS:-}

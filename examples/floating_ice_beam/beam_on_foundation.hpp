@@ -57,7 +57,6 @@ class BeamOnFoundation {
       if (x[i][1] < yb + l0) bottom_.push_back(i);
       if (x[i][0] < l0) end_.push_back(i);
     }
-    columns_ = static_cast<std::size_t>(std::lround(scene.beam_length_for(l0) / l0));
     // The springs are a distributed traction on the bottom face, which the failure check reads on
     // the surface; the end column carries the end load, a concentrated one.
     for (const auto i : bottom_)
@@ -75,17 +74,7 @@ class BeamOnFoundation {
 
   // Deflection (m, downwards) of each column, the mean over its particles, at the column's x.
   std::vector<double> deflection() const {
-    std::vector<double> w(columns_, 0.0);
-    std::vector<int> count(columns_, 0);
-    const auto& x = solver_.particles().positions();
-    const auto& x0 = solver_.reference_positions();
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      const auto c = static_cast<std::size_t>(x0[i][0] / l0_);
-      w[c] -= x[i][1] - x0[i][1];
-      ++count[c];
-    }
-    for (std::size_t c = 0; c < columns_; ++c) w[c] /= count[c];
-    return w;
+    return scene_.column_deflections(solver_.particles().positions(), solver_.reference_positions(), l0_);
   }
   double column_x(std::size_t c) const { return (static_cast<double>(c) + 0.5) * l0_; }
 
@@ -133,7 +122,6 @@ class BeamOnFoundation {
   double l0_;
   IceSolver solver_;
   std::vector<std::size_t> bottom_, end_;
-  std::size_t columns_ = 0;
   bool limits_ = false;
 };
 
@@ -152,15 +140,9 @@ inline DeflectionCheck check_deflection(const BeamOnFoundation& beam, const scen
   r.load = P;
   r.w = beam.deflection();
   for (std::size_t c = 0; c < r.w.size(); ++c) r.x.push_back(beam.column_x(c));
-  const double w_end = scene.deflection(P, r.x[0]);
-  r.end_error = r.w[0] / w_end - 1;
-  double sum = 0;
-  int n = 0;
-  for (std::size_t c = 0; r.x[c] <= 3 / scene.lambda(); ++c, ++n) {
-    const double d = r.w[c] - scene.deflection(P, r.x[c]);
-    sum += d * d;
-  }
-  r.profile_rms = std::sqrt(sum / n) / w_end;
+  const auto error = scene.profile_error(r.w, P, beam.l0());
+  r.end_error = error.end;
+  r.profile_rms = error.rms;
   r.balance_error = beam.foundation_force() / P - 1;
   return r;
 }

@@ -92,6 +92,38 @@ TEST_CASE("scenes.floating_ice_beam: particles on one lattice, the beam clear of
   CHECK(closest >= l0 * (1 - 1e-9));
 }
 
+// The column read-out: a beam bent into Hetenyi's shape (each particle moved down by the reference
+// deflection at its own x; a column's particles share their x) reads back the reference at each
+// column's centre to round-off, with no profile error; the shape scaled by 1.1 gives +10 % at the
+// end and an RMS of 0.1 times the reference's own RMS over 0 <= x <= 3 / lambda relative to its end
+// value.
+TEST_CASE("scenes.floating_ice_beam: column deflections and their error against Hetenyi's") {
+  scenes::FloatingIceBeam s;
+  const double l0 = s.thickness / 8, P = 20;
+  std::vector<std::size_t> end_column;
+  const auto beam = s.beam_particles(l0, end_column);
+  const auto& reference = beam.positions();
+  auto bent = [&](double scale) {
+    auto x = reference;
+    for (auto& xi : x) xi[1] -= scale * s.deflection(P, xi[0]);
+    return x;
+  };
+  const auto w = s.column_deflections(bent(1), reference, l0);
+  REQUIRE(w.size() == static_cast<std::size_t>(std::lround(s.beam_length_for(l0) / l0)));
+  const double w_end = s.deflection(P, 0.5 * l0);
+  for (std::size_t c = 0; c < w.size(); c += 17)
+    CHECK(std::abs(w[c] - s.deflection(P, (c + 0.5) * l0)) <= 1e-12 * w_end);
+  const auto exact = s.profile_error(w, P, l0);
+  CHECK(std::abs(exact.end) <= 1e-12);
+  CHECK(exact.rms <= 1e-12);
+  const auto scaled = s.profile_error(s.column_deflections(bent(1.1), reference, l0), P, l0);
+  CHECK(scaled.end == doctest::Approx(0.1).epsilon(1e-9));
+  double sum = 0;
+  std::size_t n = 0;
+  for (; (n + 0.5) * l0 <= 3 / s.lambda(); ++n) sum += std::pow(s.deflection(P, (n + 0.5) * l0), 2);
+  CHECK(scaled.rms == doctest::Approx(0.1 * std::sqrt(sum / n) / w_end).epsilon(1e-9));
+}
+
 TEST_CASE("scenes.floating_ice_beam: spacings that do not fit are refused") {
   scenes::FloatingIceBeam s;
   std::vector<std::size_t> end_column;

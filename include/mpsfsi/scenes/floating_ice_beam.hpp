@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -75,6 +76,43 @@ struct FloatingIceBeam {
     return tensile_strength * thickness * thickness / (6 * std::abs(moment(1.0, x)));
   }
   double draft() const { return ice_density / water_density * thickness; }
+
+  // Deflection (m, downwards) of each of the beam's columns: the mean over the column's particles of
+  // how far each lies below its reference position. Column c counts from the loaded end and is
+  // centred at x = (c + 1/2) l0.
+  std::vector<double> column_deflections(const VecArray<2, double>& positions, const VecArray<2, double>& reference,
+                                         double l0) const {
+    const auto columns = static_cast<std::size_t>(std::lround(beam_length_for(l0) / l0));
+    std::vector<double> w(columns, 0.0);
+    std::vector<int> count(columns, 0);
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      const auto c = std::min(columns - 1, static_cast<std::size_t>(reference[i][0] / l0));
+      w[c] -= positions[i][1] - reference[i][1];
+      ++count[c];
+    }
+    for (std::size_t c = 0; c < columns; ++c)
+      if (count[c] > 0) w[c] /= count[c];
+    return w;
+  }
+
+  // Column deflections (column_deflections) against Hetenyi's under P: the end column's relative
+  // error, and the RMS of the difference over the columns with 0 <= x <= 3 / lambda relative to the
+  // end column's reference deflection.
+  struct ProfileError {
+    double end = 0;
+    double rms = 0;
+  };
+  ProfileError profile_error(const std::vector<double>& w, double P, double l0) const {
+    const double w_end = deflection(P, 0.5 * l0);
+    ProfileError e;
+    e.end = w.at(0) / w_end - 1;
+    double sum = 0;
+    std::size_t n = 0;
+    for (; n < w.size() && (n + 0.5) * l0 <= 3 / lambda(); ++n)
+      sum += std::pow(w[n] - deflection(P, (n + 0.5) * l0), 2);
+    e.rms = std::sqrt(sum / static_cast<double>(n)) / w_end;
+    return e;
+  }
 
   // Lengths rounded to whole spacings, the beam's bottom y_b on the water's lattice (a whole
   // number of spacings above the floor).
