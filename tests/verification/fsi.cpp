@@ -220,11 +220,11 @@ struct LoadedBeamResult {
   double max_balance_error = 0;        // max |F / (W + P) - 1| over the steps
   double max_block_balance_error = 0;  // the same of the means over 0.05 s blocks
   double held_balance = 0;             // mean of F / (W + P) - 1 once the load is held (t > ramp)
-  double end_deflection = 0;     // m, at t_end, relative to the far end
-  double end_error = 0;          // against Hetenyi's at the end column's centre
-  double profile_rms = 0;        // over 0 <= x <= 3 / lambda, relative to Hetenyi's end deflection
-  double far_end_sink = 0;       // m, the far end's column at t_end
-  int water_on_ice = 0;          // water particles above the ice's top face at t_end
+  double end_deflection = 0;           // m, at t_end, relative to the far end
+  double end_error = 0;                // against Hetenyi's at the end column's centre
+  double profile_rms = 0;              // over 0 <= x <= 3 / lambda, relative to Hetenyi's end deflection
+  double far_end_sink = 0;             // m, the far end's column at t_end
+  int water_on_ice = 0;                // water particles above the ice's top face at t_end
   double fluid_solves_per_step = 0;
   int most_fluid_solves = 0;
   bool blew_up = false;
