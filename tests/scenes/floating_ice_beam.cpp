@@ -122,6 +122,8 @@ TEST_CASE("scenes.floating_ice_beam: column deflections and their error against 
   std::size_t n = 0;
   for (; (n + 0.5) * l0 <= 3 / s.lambda(); ++n) sum += std::pow(s.deflection(P, (n + 0.5) * l0), 2);
   CHECK(scaled.rms == doctest::Approx(0.1 * std::sqrt(sum / n) / w_end).epsilon(1e-9));
+  CHECK_THROWS_AS(s.profile_error({}, P, l0), InvalidInput);
+  CHECK_THROWS_AS(s.profile_error(w, 0, l0), InvalidInput);
 }
 
 TEST_CASE("scenes.floating_ice_beam: spacings that do not fit are refused") {

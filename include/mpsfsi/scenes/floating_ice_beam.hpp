@@ -103,9 +103,12 @@ struct FloatingIceBeam {
     double rms = 0;
   };
   ProfileError profile_error(const std::vector<double>& w, double P, double l0) const {
+    if (w.empty() || !(l0 > 0) || !(P != 0))
+      detail::throw_invalid("scenes::FloatingIceBeam::profile_error",
+                            "needs at least one column deflection, a positive l0 and a non-zero load");
     const double w_end = deflection(P, 0.5 * l0);
     ProfileError e;
-    e.end = w.at(0) / w_end - 1;
+    e.end = w[0] / w_end - 1;
     double sum = 0;
     std::size_t n = 0;
     for (; n < w.size() && (n + 0.5) * l0 <= 3 / lambda(); ++n)
