@@ -81,6 +81,7 @@ TEST_CASE("scenes.floating_ice_beam: particles on one lattice, the beam clear of
   double closest = 1e300;
   const double yb = s.beam_bottom(l0), level = s.open_water_level(l0);
   CHECK(std::abs(level - yb - s.draft()) <= l0 / 2);
+  CHECK(s.level_above_draft(l0) == doctest::Approx(level - yb - s.draft()).epsilon(1e-12));
   for (std::size_t i = 0; i < water.size(); ++i) {
     const auto& x = water.positions()[i];
     for (std::size_t j = 0; j < beam.size(); j += 7) closest = std::min(closest, (x - beam.positions()[j]).norm());
@@ -90,6 +91,18 @@ TEST_CASE("scenes.floating_ice_beam: particles on one lattice, the beam clear of
     CHECK(x[1] < (x[0] < L ? yb : level));
   }
   CHECK(closest >= l0 * (1 - 1e-9));
+}
+
+// The level misses the draft unless the draft is a whole number of rows: 917 kg/m3 ice 80 mm thick
+// floats 73.36 mm deep, 3.36 mm below the 7-row level at l0 = 10 mm; at 875 kg/m3 it floats exactly
+// 7 rows deep.
+TEST_CASE("scenes.floating_ice_beam: the open water's level against the draft") {
+  scenes::FloatingIceBeam s;
+  s.thickness = 0.08;
+  s.ice_density = 917;
+  CHECK(s.level_above_draft(0.01) == doctest::Approx(0.07 - 0.07336).epsilon(1e-9));
+  s.ice_density = 875;
+  CHECK(std::abs(s.level_above_draft(0.01)) < 1e-12);
 }
 
 // The column read-out: a beam bent into Hetenyi's shape (each particle moved down by the reference

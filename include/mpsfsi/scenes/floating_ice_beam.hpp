@@ -127,6 +127,11 @@ struct FloatingIceBeam {
   double tank_length(double l0) const { return beam_length_for(l0) + std::round(open_water / l0) * l0; }
   // The open water's surface: the beam's draft above y_b, to the nearest row.
   double open_water_level(double l0) const { return beam_bottom(l0) + std::round(draft() / l0) * l0; }
+  // How far that level lies above the draft, m. Unless it is zero (a draft of whole rows,
+  // rho_i h / rho_w = n l0), the beam starts out of equilibrium: rho_w g times this per unit
+  // length and width, upwards when positive, which the water's slowest sloshing takes many periods
+  // to absorb.
+  double level_above_draft(double l0) const { return open_water_level(l0) - beam_bottom(l0) - draft(); }
 
   // The water and the tank (one wall layer, `dummy_layers` behind it) up to two spacings above
   // the beam's top.
