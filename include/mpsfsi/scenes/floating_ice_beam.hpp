@@ -128,9 +128,8 @@ struct FloatingIceBeam {
   // The open water's surface: the beam's draft above y_b, to the nearest row.
   double open_water_level(double l0) const { return beam_bottom(l0) + std::round(draft() / l0) * l0; }
   // How far that level lies above the draft, m. Unless it is zero (a draft of whole rows,
-  // rho_i h / rho_w = n l0), the beam starts out of equilibrium: rho_w g times this per unit
-  // length and width, upwards when positive, which the water's slowest sloshing takes many periods
-  // to absorb.
+  // rho_i h / rho_w = n l0), the beam starts out of equilibrium: its bottom carries rho_w g times
+  // this more (less, when negative) than its weight, and the water's slow sloshing takes it up.
   double level_above_draft(double l0) const { return open_water_level(l0) - beam_bottom(l0) - draft(); }
 
   // The water and the tank (one wall layer, `dummy_layers` behind it) up to two spacings above
