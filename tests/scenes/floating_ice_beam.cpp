@@ -92,6 +92,21 @@ TEST_CASE("scenes.floating_ice_beam: particles on one lattice, the beam clear of
   CHECK(closest >= l0 * (1 - 1e-9));
 }
 
+// The roller sits at mid-thickness on the end column: of 8 rows the lower middle one (3.5 spacings
+// above the bottom), of 7 rows the middle one.
+TEST_CASE("scenes.floating_ice_beam: the roller's particle") {
+  scenes::FloatingIceBeam s;
+  for (const int rows : {8, 7}) {
+    const double l0 = s.thickness / rows;
+    std::vector<std::size_t> end_column;
+    const auto beam = s.beam_particles(l0, end_column);
+    const auto roller = s.roller_particle(beam, end_column, l0);
+    CHECK(beam.positions()[roller][0] == doctest::Approx(l0 / 2));
+    CHECK(beam.positions()[roller][1] == doctest::Approx(s.beam_bottom(l0) + 3.5 * l0));
+    CHECK_THROWS_AS(s.roller_particle(beam, {}, l0), InvalidInput);
+  }
+}
+
 // The level misses the draft unless the draft is a whole number of rows: 917 kg/m3 ice 80 mm thick
 // floats 73.36 mm deep, 3.36 mm below the 7-row level at l0 = 10 mm; at 875 kg/m3 it floats exactly
 // 7 rows deep.

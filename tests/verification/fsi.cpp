@@ -107,12 +107,13 @@ double plate_alone(const scenes::HydrostaticPlate& scene, double l0, double t_en
 }
 
 // The floating beam of scenes::FloatingIceBeam (h = 80 mm, l0 = 10 mm: 5.06 m of ice on 0.25 m of
-// water), its loaded end on a roller against the tank wall, no load, coupled by `Scheme` with the
-// settings for water under a structure (docs/theory.md, section 2.9), the own-value pressure
-// gradient and negative pressures kept, at a fixed step `dt`, with or without eq 10's interface
-// acceleration in the fluid's predictor (docs/theory.md, section 4.4). The ice's inertia is scaled by
-// `inertia_scale` and its gravity by the inverse, so its weight stays. Reports the vertical fluid
-// force on the ice against its weight over [window_start, t_end] and the fluid solves per step.
+// water), its loaded end on a roller at mid-thickness against the tank wall (roller_particle), no
+// load, coupled by `Scheme` with the settings for water under a structure (docs/theory.md, section
+// 2.9), the own-value pressure gradient and negative pressures kept, at a fixed step `dt`, with or
+// without eq 10's interface acceleration in the fluid's predictor (docs/theory.md, section 4.4).
+// The ice's inertia is scaled by `inertia_scale` and its gravity by the inverse, so its weight
+// stays. Reports the vertical fluid force on the ice against its weight over [window_start, t_end]
+// and the fluid solves per step.
 struct FloatingBeamResult {
   double max_load_deviation = 0;     // max |F / W - 1| over the window's steps
   double max_block_deviation = 0;    // max |F / W - 1| of the means over 0.05 s blocks of the window
@@ -158,8 +159,10 @@ FloatingBeamResult floating_beam(double inertia_scale, double dt, double t_end, 
   scene.thickness = 0.08;
   const double l0 = 0.01;
   std::vector<std::size_t> end_column;
-  ElasticSolver<2> ice(scene.beam_particles(l0, end_column), floating_ice_parameters(scene, l0, inertia_scale));
-  for (const auto i : end_column) ice.support(i, Vec<2>(1, 0));
+  auto beam = scene.beam_particles(l0, end_column);
+  const auto roller = scene.roller_particle(beam, end_column, l0);
+  ElasticSolver<2> ice(std::move(beam), floating_ice_parameters(scene, l0, inertia_scale));
+  ice.support(roller, Vec<2>(1, 0));
   const auto fp = water_under_ice_parameters(l0, dt);
   CouplingParameters cp;
   cp.interface_acceleration = interface_acceleration;
@@ -235,8 +238,10 @@ LoadedBeamResult loaded_floating_beam(const scenes::FloatingIceBeam& scene, doub
   std::vector<std::size_t> end_column;
   auto sp = floating_ice_parameters(scene, l0, 1);
   sp.damping = damping;
-  ElasticSolver<2> ice(scene.beam_particles(l0, end_column), sp);
-  for (const auto i : end_column) ice.support(i, Vec<2>(1, 0));
+  auto beam = scene.beam_particles(l0, end_column);
+  const auto roller = scene.roller_particle(beam, end_column, l0);
+  ElasticSolver<2> ice(std::move(beam), sp);
+  ice.support(roller, Vec<2>(1, 0));
   CouplingParameters cp;
   cp.interface_acceleration = false;
   FsiCoupler<FluidSolver<2, test::OwnValueGradientPolicies<2>>, ElasticSolver<2>, InterfaceQuasiNewton> coupler(

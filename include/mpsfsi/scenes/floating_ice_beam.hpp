@@ -38,8 +38,11 @@ namespace scenes {
 // The tank wall does not hold the beam: FsiCoupler has no contact between a structure and the
 // tank's fixed walls. The open water pushes on the far end face with rho_w g d^2 / 2 per unit
 // width (d the wetted depth of the face) and nothing pushes back on the loaded end, so a free beam
-// drifts into the wall. Support the loaded end's column horizontally, a roller on the wall:
-// ElasticSolver::support(i, e_x) for each i in end_column.
+// drifts into the wall. Hold one particle of the loaded end horizontally, a roller on the wall at
+// mid-thickness: ElasticSolver::support(roller_particle(...), e_x). Holding the whole end column
+// would keep the end face vertical, a guided end (w'(0) = 0) in place of Hetenyi's free one: the
+// same equations give it w(0) = P lambda / k, half the free end's, and the largest moment,
+// P / (2 lambda), at the end.
 struct FloatingIceBeam {
   double thickness = 0.04;          // h, m
   double beam_length = 0;           // m; 0: 5 / lambda rounded up to whole spacings
@@ -152,6 +155,22 @@ struct FloatingIceBeam {
     auto set = material_block<2>(Vec<2>(0, yb), Vec<2>(beam_length_for(l0), yb + thickness), l0);
     end_column = select(set, [&](const Vec<2>& x) { return x[0] < l0; });
     return set;
+  }
+
+  // The particle of `end_column` (from beam_particles) nearest the beam's mid-thickness, the lower
+  // one of two equally near: the roller's (see above). `beam` is the set beam_particles returned.
+  std::size_t roller_particle(const ParticleSet<2>& beam, const std::vector<std::size_t>& end_column,
+                              double l0) const {
+    if (end_column.empty())
+      detail::throw_invalid("scenes::FloatingIceBeam::roller_particle", "the end column is empty");
+    const double mid = beam_bottom(l0) + 0.5 * thickness;
+    std::size_t best = end_column.front();
+    for (const auto i : end_column) {
+      const double y = beam.positions().at(i)[1], best_y = beam.positions()[best][1];
+      const double closer = std::abs(best_y - mid) - std::abs(y - mid);
+      if (closer > 1e-9 * l0 || (std::abs(closer) <= 1e-9 * l0 && y < best_y)) best = i;
+    }
+    return best;
   }
 
  private:
