@@ -53,7 +53,7 @@ double water_weight(const scenes::HydrostaticPlate& s) { return s.fluid_density 
 
 template <class Scheme>
 HydrostaticResult run_hydrostatic(const scenes::HydrostaticPlate& scene, double l0, double dt, double t_end,
-                                  double window) {
+                                  double window, const CouplingParameters& cp = CouplingParameters()) {
   std::vector<std::size_t> clamped;
   std::size_t middle = 0;
   ElasticSolver<2> plate(scene.plate_particles(l0, clamped, middle), plate_parameters(scene, l0));
@@ -61,7 +61,7 @@ HydrostaticResult run_hydrostatic(const scenes::HydrostaticPlate& scene, double 
   FluidParameters<2> fp;
   fp.l0 = l0;
   fp.dt = dt;
-  FsiCoupler<FluidSolver<2>, ElasticSolver<2>, Scheme> coupler(scene.fluid_particles(l0), fp, std::move(plate));
+  FsiCoupler<FluidSolver<2>, ElasticSolver<2>, Scheme> coupler(scene.fluid_particles(l0), fp, std::move(plate), cp);
   const double y0 = coupler.solid().particles().positions()[middle][1];
   const double weight = water_weight(scene);
   HydrostaticResult r;
@@ -347,6 +347,17 @@ TEST_CASE("hydrostatic plate: force balance and deflection") {
   // The coupled deflection is the plate's own response to that load: within 2 % (the load's
   // tolerance; the deflection is linear in it) of the plate alone under rho g H.
   CHECK(test::within_relative(r.deflection, alone, 0.02));
+  // The same with eq 18's pressure as the linear fit of the water's pressure at the interface
+  // point (docs/theory.md, section 4.3), against the same two bounds: measured 0.9993 W and
+  // +0.00 % against the plate alone.
+  CouplingParameters fit;
+  fit.interface_pressure = InterfacePressure::linear_fit;
+  const auto f = run_hydrostatic<SubIterated>(scene, l0, 1e-3, t_end, window, fit);
+  REQUIRE(!f.blew_up);
+  std::printf("  with the linear fit: load %.4f W (max deviation %.4f), deflection %.4e m (plate alone %+.2f %%)\n",
+              f.load / weight, f.max_load_deviation, f.deflection, 100 * (f.deflection / alone - 1));
+  CHECK(test::within_relative(f.load, weight, 0.02));
+  CHECK(test::within_relative(f.deflection, alone, 0.02));
 }
 
 TEST_CASE("coupling schemes: where each is stable against the structure-to-fluid density ratio") {

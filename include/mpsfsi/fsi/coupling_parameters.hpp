@@ -10,6 +10,17 @@
 namespace mpsfsi {
 inline namespace MPSFSI_ABI {
 
+// How the interface pressure of eq 18 is read from the fluid particles within re of the interface
+// point x_IF (interface_load.hpp; docs/theory.md, section 4.3).
+enum class InterfacePressure {
+  // Eq 18 as printed: the w-weighted mean of their pressures.
+  weighted_mean,
+  // The value at x_IF of the w-weighted least-squares plane through their pressures: exact for a
+  // pressure linear in space (hydrostatic water), whatever the particles' spacing and offset
+  // along the face.
+  linear_fit
+};
+
 // Settings of FsiCoupler. The fluid's time step is the coupling step; the structure sub-steps
 // within it at its own stable step (ElasticSolver::advance_by).
 struct CouplingParameters {
@@ -28,6 +39,10 @@ struct CouplingParameters {
   bool covered_surface_as_dummy = true;
   // Scale eq 18's pressure by the wetted fraction of a partially wetted element (interface_load.hpp).
   bool partial_wetting_correction = true;
+  // Eq 18's mean, or the linear fit that a floating structure needs: the mean reads the pressure
+  // of the water below x_IF, and its wetted fraction drops when the water's particles sit offset
+  // along the face (docs/theory.md, section 4.3).
+  InterfacePressure interface_pressure = InterfacePressure::weighted_mean;
 
   void validate() const {
     auto need = [](bool ok, const std::string& what) {

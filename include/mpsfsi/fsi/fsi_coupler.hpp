@@ -161,7 +161,9 @@ class FsiCoupler {
       sync_walls();
     }
     if (c_.partial_wetting_correction)
-      full_weight_ = full_wetting_weight<Weight, dimension, scalar_type>(fluid_.parameters().l0, re());
+      full_weight_ = c_.interface_pressure == InterfacePressure::linear_fit
+                         ? least_full_wetting_weight<Weight, dimension, scalar_type>(fluid_.parameters().l0, re())
+                         : full_wetting_weight<Weight, dimension, scalar_type>(fluid_.parameters().l0, re());
     structure_acceleration_.assign(solid_.particles().size(), vec_type::Zero());
     load_.assign(solid_.particles().size(), vec_type::Zero());
     applied_force_.assign(solid_.particles().size(), vec_type::Zero());
@@ -340,7 +342,7 @@ class FsiCoupler {
     find_candidates();
     interface_loads<Weight>(solid_.particles().positions(), normal_, on_surface_, fluid_.particles(),
                             fluid_.pressure(), candidates_, fluid_.parameters().l0, re(), full_weight_, load,
-                            interface_pressure_);
+                            interface_pressure_, c_.interface_pressure);
   }
 
   template <class S, class Archive, class = void>
