@@ -85,15 +85,21 @@ void interface_loads(const VecArray<Dim, Scalar>& structure_x, const VecArray<Di
         if (kind[j] != ParticleKind::fluid) continue;
         const Vec<Dim, Scalar> r = xf[j] - x_if;
         const Scalar w = Weight::value(r.norm(), re);
-        weighted += w * fluid_pressure[j];
-        weights += w;
-        if (form == InterfacePressure::linear_fit && w > 0) {
+        if (form == InterfacePressure::weighted_mean) {
+          weighted += w * fluid_pressure[j];
+          weights += w;
+        } else if (w > 0) {
           Basis basis;
           basis << Scalar(1), r / l0;  // in spacings, so that the moments are of one order
           moment.noalias() += w * basis * basis.transpose();
           moment_pressure += (w * fluid_pressure[j]) * basis;
           ++in_range;
         }
+      }
+      if (form == InterfacePressure::linear_fit) {
+        // The moments' constant entries are the mean's sums.
+        weights = moment(0, 0);
+        weighted = moment_pressure[0];
       }
       if (weights > 0 && form == InterfacePressure::weighted_mean) {
         pressure = weighted / std::max(weights, full_weight);
