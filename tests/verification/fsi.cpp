@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -20,6 +19,7 @@
 #include "mpsfsi/scenes/tank.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 #include "support/tolerance.hpp"
+#include "support/floating_ice_in_water.hpp"
 #include "support/water_under_structure.hpp"
 
 using namespace mpsfsi;
@@ -124,34 +124,6 @@ struct FloatingBeamResult {
   bool blew_up = false;
 };
 
-// The floating beam's ice: scenes::FloatingIceBeam's material in plane stress, its inertia scaled by
-// `inertia_scale` and its gravity by the inverse (the weight stays), with the brittle solid's bond
-// viscosity (solid_parameters.hpp): without it the scaled ice's own vibrations, a few coupling steps
-// long at large inertias, grow under the lagging load as well.
-SolidParameters<2> floating_ice_parameters(const scenes::FloatingIceBeam& scene, double l0, double inertia_scale) {
-  SolidParameters<2> sp;
-  sp.l0 = l0;
-  sp.density = scene.ice_density * inertia_scale;
-  sp.gravity = Vec<2>(0, -scene.gravity / inertia_scale);
-  sp.youngs_modulus = scene.youngs_modulus;
-  sp.poisson_ratio = scene.poisson_ratio;
-  sp.plane_model = PlaneModel::plane_stress;
-  sp.bond_viscosity = SolidParameters<2>::fracture_bond_viscosity;
-  return sp;
-}
-
-// The water under the floating beam: the settings for water under a structure (docs/theory.md,
-// section 2.9) with negative pressures kept.
-FluidParameters<2> water_under_ice_parameters(double l0, double dt) {
-  FluidParameters<2> fp;
-  fp.l0 = l0;
-  fp.dt = dt;
-  fp.wall_condition = WallCondition::neumann;
-  fp.density_term_compression_only = false;
-  fp.negative_pressure = NegativePressure::keep;
-  return fp;
-}
-
 template <class Scheme = ExplicitPartitioned>
 FloatingBeamResult floating_beam(double inertia_scale, double dt, double t_end, double window_start,
                                  bool interface_acceleration = true) {
@@ -161,9 +133,9 @@ FloatingBeamResult floating_beam(double inertia_scale, double dt, double t_end, 
   std::vector<std::size_t> end_column;
   auto beam = scene.beam_particles(l0, end_column);
   const auto roller = scene.roller_particle(beam, end_column, l0);
-  ElasticSolver<2> ice(std::move(beam), floating_ice_parameters(scene, l0, inertia_scale));
+  ElasticSolver<2> ice(std::move(beam), test::floating_ice_parameters(scene, l0, inertia_scale));
   ice.support(roller, Vec<2>(1, 0));
-  const auto fp = water_under_ice_parameters(l0, dt);
+  const auto fp = test::water_under_ice_parameters(l0, dt);
   CouplingParameters cp;
   cp.interface_acceleration = interface_acceleration;
   FsiCoupler<FluidSolver<2, test::OwnValueGradientPolicies<2>>, ElasticSolver<2>, Scheme> coupler(
@@ -207,118 +179,6 @@ FloatingBeamResult floating_beam(double inertia_scale, double dt, double t_end, 
     return r;
   }
   r.mean_load /= samples;
-  return r;
-}
-
-// The free beam above at the ice's own inertia, coupled by IQN-ILS without eq 10's interface
-// acceleration (its stable setting at a 2 ms step), under an end load: P on the loaded end's
-// column, downwards, spread evenly over its particles, ramped linearly from zero over `ramp` and
-// then held. The motion is damped at the rate `damping` (1/s), towards the static state that
-// Hetenyi's solution describes: each water particle's velocity is scaled by exp(-damping dt) after
-// each step, and the ice has the same mass-proportional damping (SolidParameters::damping); damping
-// forces vanish at rest. The deflection is taken relative to the far end's column: the whole beam
-// sinks as the load displaces water and the open water's level rises, a uniform shift that the
-// semi-infinite beam's reference (undisturbed far away) leaves out. Prints the state every 0.5 s.
-struct LoadedBeamResult {
-  double max_balance_error = 0;        // max |F / (W + P) - 1| over the steps
-  double max_block_balance_error = 0;  // the same of the means over 0.05 s blocks
-  double held_balance = 0;             // mean of F / (W + P) - 1 once the load is held (t > ramp)
-  double end_deflection = 0;           // m, at t_end, relative to the far end
-  double end_error = 0;                // against Hetenyi's at the end column's centre
-  double profile_rms = 0;              // over 0 <= x <= 3 / lambda, relative to Hetenyi's end deflection
-  double far_end_sink = 0;             // m, the far end's column at t_end
-  int water_on_ice = 0;                // water particles above the ice's top face at t_end
-  double fluid_solves_per_step = 0;
-  int most_fluid_solves = 0;
-  bool blew_up = false;
-};
-
-LoadedBeamResult loaded_floating_beam(const scenes::FloatingIceBeam& scene, double l0, double dt, double load,
-                                      double ramp, double damping, double t_end) {
-  std::vector<std::size_t> end_column;
-  auto sp = floating_ice_parameters(scene, l0, 1);
-  sp.damping = damping;
-  auto beam = scene.beam_particles(l0, end_column);
-  const auto roller = scene.roller_particle(beam, end_column, l0);
-  ElasticSolver<2> ice(std::move(beam), sp);
-  ice.support(roller, Vec<2>(1, 0));
-  CouplingParameters cp;
-  cp.interface_acceleration = false;
-  FsiCoupler<FluidSolver<2, test::OwnValueGradientPolicies<2>>, ElasticSolver<2>, InterfaceQuasiNewton> coupler(
-      scene.fluid_particles(l0), water_under_ice_parameters(l0, dt), std::move(ice), cp);
-  const double weight = scene.ice_density * scene.gravity * scene.thickness * scene.beam_length_for(l0);
-  const double top_row = scene.beam_bottom(l0) + scene.thickness - 0.5 * l0;
-  auto load_at = [&](double t) { return load * std::min(1.0, t / ramp); };
-  LoadedBeamResult r;
-  // Fills r's deflection figures from the present state.
-  auto measure = [&](double P) {
-    auto w = scene.column_deflections(coupler.solid().particles().positions(), coupler.solid().reference_positions(),
-                                      l0);
-    const auto& fluid = coupler.fluid().particles();
-    r.water_on_ice = 0;
-    for (std::size_t i = 0; i < fluid.size(); ++i) {
-      const auto& x = fluid.positions()[i];
-      const auto c = static_cast<std::size_t>(x[0] / l0);
-      const bool over_ice = x[0] > 0 && c < w.size() && x[1] > top_row - w[c];
-      if (fluid.kinds()[i] == ParticleKind::fluid && over_ice) ++r.water_on_ice;
-    }
-    r.far_end_sink = w.back();
-    for (auto& wc : w) wc -= r.far_end_sink;
-    const auto error = scene.profile_error(w, P, l0);
-    r.end_deflection = w[0];
-    r.end_error = error.end;
-    r.profile_rms = error.rms;
-  };
-  long long solves = 0, steps = 0;
-  double block_sum = 0, held_sum = 0;
-  int block_samples = 0, held_samples = 0;
-  const int block = static_cast<int>(std::lround(0.05 / dt));
-  const double velocity_factor = std::exp(-damping * dt);
-  const int report_every = static_cast<int>(std::lround(0.5 / dt));
-  const auto wall_start = std::chrono::steady_clock::now();
-  try {
-    while (coupler.time() < t_end - 1e-12) {
-      const double P = load_at(coupler.time() + dt);
-      auto& applied = coupler.applied_force();
-      for (const auto i : end_column) applied[i][1] = -P / static_cast<double>(end_column.size());
-      coupler.step();
-      ++steps;
-      solves += coupler.last_iterations();
-      r.most_fluid_solves = std::max(r.most_fluid_solves, coupler.last_iterations());
-      r.fluid_solves_per_step = double(solves) / double(steps);
-      auto& fluid = coupler.fluid().particles();
-      for (std::size_t i = 0; i < fluid.size(); ++i)
-        if (fluid.kinds()[i] == ParticleKind::fluid) fluid.velocities()[i] *= velocity_factor;
-      const double balance = coupler.total_interface_force()[1] / (weight + P) - 1;
-      r.max_balance_error = std::max(r.max_balance_error, std::abs(balance));
-      block_sum += balance;
-      if (++block_samples == block) {
-        r.max_block_balance_error = std::max(r.max_block_balance_error, std::abs(block_sum / block));
-        block_sum = 0;
-        block_samples = 0;
-      }
-      if (coupler.time() > ramp + 1e-12) {
-        held_sum += balance;
-        ++held_samples;
-      }
-      if (steps % report_every == 0) {
-        measure(P);
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-        std::printf("  t %5.2f s  P %5.2f N/m  F/(W+P) - 1 %+.5f  end %6.3f mm (Hetenyi %6.3f)  profile RMS %6.2f %%  "
-                    "far end %+6.3f mm  water on the ice %d  wall %.0f s, %.0f s left\n",
-                    coupler.time(), P, balance, 1e3 * r.end_deflection, 1e3 * scene.deflection(P, 0.5 * l0),
-                    100 * r.profile_rms, 1e3 * r.far_end_sink, r.water_on_ice, wall,
-                    wall / coupler.time() * (t_end - coupler.time()));
-        std::fflush(stdout);
-      }
-    }
-  } catch (const SimulationError& e) {
-    std::printf("  (loaded floating beam: %s)\n", e.what());
-    r.blew_up = true;
-    return r;
-  }
-  measure(load_at(t_end));
-  r.held_balance = held_sum / std::max(1, held_samples);
   return r;
 }
 
@@ -636,49 +496,6 @@ TEST_CASE("hydrostatic plate alone: the deflection converges to within 5 % of Eu
   std::printf("extrapolated to h/l0 -> infinity: %+.2f %%\n", 100 * converged);
   CHECK(converged > 0);
   CHECK(converged < 0.05);
-}
-
-}  // TEST_SUITE
-
-// Longer still (label "long"): the floating beam under an end load, about 12 minutes on 2 cores.
-TEST_SUITE("long.fsi") {
-
-TEST_CASE("floating beam under an end load: IQN-ILS carries the ice and the load") {
-  // The free beam of the validation case (h = 80 mm, l0 = 10 mm, 5.06 m = 5 / lambda of ice on
-  // 0.25 m of water) under half its breaking load, P = P_f / 2, ramped over 2 s and held for as
-  // long again. The damping is critical for the slowest motion, the water's quarter-wave sloshing
-  // under the beam from the loaded end's wall to the open water: omega = (pi / 2) sqrt(g H) / L
-  // with H the depth under the beam and L the tank, 0.46/s (a 14 s period), damping 2 omega.
-  // Asserted: the fluid's force carries the ice's weight and the load, F = W + P, within the
-  // floating beam's 1 % (docs/validation/fsi.md), on the mean over the 2 s of held load. A step's
-  // F - W - P is the ice's momentum change as well (the beam still swings: its far end moves
-  // millimetres in tenths of a second), so single steps and 0.05 s means are printed, not
-  // asserted. Nor is the deflection against Hetenyi's, which the run is too short to settle to.
-  // The ice is lighter than the free beam's: 875 kg/m3, within the densities measured for
-  // first-year sea ice above the waterline (840-910 kg/m3; Timco & Frederking 1996, Cold Reg. Sci.
-  // Technol. 24), makes the draft exactly 7 of the 8 rows, so the open water's level holds the
-  // unloaded beam in equilibrium. At 917 kg/m3 the level lies 3.4 mm below the draft, and the beam
-  // starts with an unbalanced 33 Pa under its whole length (167 N/m, 3.4 P), which sets off the
-  // slow sloshing the load is meant not to excite.
-  scenes::FloatingIceBeam scene;
-  scene.thickness = 0.08;
-  scene.ice_density = 875;
-  const double l0 = 0.01, dt = 2e-3, t_end = 4, ramp = 2;
-  REQUIRE(std::abs(scene.level_above_draft(l0)) < 1e-9);
-  const double depth = scene.beam_bottom(l0), tank = scene.tank_length(l0);
-  const double omega = std::acos(-1.0) / 2 * std::sqrt(scene.gravity * depth) / tank;
-  const double P = scene.failure_load() / 2;
-  std::printf("floating beam under an end load: P = %.2f N/m (P_f / 2), Hetenyi's end deflection %.3f mm, damping "
-              "%.3f/s\n", P, 1e3 * scene.deflection(P, 0.5 * l0), 2 * omega);
-  const auto r = loaded_floating_beam(scene, l0, dt, P, ramp, 2 * omega, t_end);
-  REQUIRE(!r.blew_up);
-  std::printf("floating beam under an end load at %.0f s: F/(W+P) - 1 over the held load %+.5f, largest |F/(W+P) - 1| "
-              "of a step %.5f and of a 0.05 s mean %.5f; end deflection %.3f mm (%+.1f %% of Hetenyi's), profile RMS "
-              "%.1f %%, far end %+.3f mm, water on the ice %d; fluid solves per step %.2f (at most %d)\n",
-              t_end, r.held_balance, r.max_balance_error, r.max_block_balance_error, 1e3 * r.end_deflection,
-              100 * r.end_error, 100 * r.profile_rms, 1e3 * r.far_end_sink, r.water_on_ice, r.fluid_solves_per_step,
-              r.most_fluid_solves);
-  CHECK(std::abs(r.held_balance) < 0.01);
 }
 
 }  // TEST_SUITE

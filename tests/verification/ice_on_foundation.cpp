@@ -16,6 +16,7 @@
 #include "floating_ice_beam/beam_on_foundation.hpp"
 #include "mpsfsi/scenes/floating_ice_beam.hpp"
 #include "mpsfsi/solid/rigid_obstacle.hpp"
+#include "support/ice_break_checks.hpp"
 
 using namespace mpsfsi;
 
@@ -23,6 +24,8 @@ namespace {
 
 using floating_ice::BeamOnFoundation;
 using floating_ice::BreakResult;
+using test::check_clean_break;
+using test::report;
 
 // The scene's ice: E = 60 MPa, nu = 0.3, 917 kg/m3, sigma_f = 30 kPa, h = 40 mm, plane stress;
 // 1 / lambda = 0.60 m, pi / (4 lambda) = 0.472 m, P_f = 41.3 N/m.
@@ -106,24 +109,6 @@ const BreakResult& slope_break() {
     return r;
   }();
   return result;
-}
-
-void report(const char* what, const BreakResult& r, double x_f) {
-  MESSAGE(std::string(what) << ": first failure at t = " << r.first_failure_time << " s, x = " << r.first_failure[0]
-                            << " m (" << 100 * (r.first_failure[0] / x_f - 1) << " % from pi/(4 lambda) = " << x_f
-                            << "), y = " << r.first_failure[1] << " m; load then (" << r.load_at_failure[0] << ", "
-                            << r.load_at_failure[1] << ") N/m; " << r.failures << " failures, " << r.cut_bonds
-                            << " bonds cut, " << r.pieces << " pieces of more than 10 particles, "
-                            << r.small_fragment_particles << " particles in smaller ones, the largest piece from x = "
-                            << r.far_piece_start << " m; " << r.wall_seconds << " s");
-}
-
-// The clean break of the floating beam's acceptance: two pieces, the far one from within 10 % of
-// pi / (4 lambda), and no more than 1 % of the particles shed in small fragments.
-void check_clean_break(const BreakResult& r, double x_f) {
-  CHECK(r.pieces == 2);
-  CHECK(std::abs(r.far_piece_start / x_f - 1) <= 0.10);
-  CHECK(r.small_fragment_particles <= r.particles / 100);
 }
 
 }  // namespace

@@ -134,6 +134,12 @@ struct FloatingIceBeam {
   // rho_i h / rho_w = n l0), the beam starts out of equilibrium: its bottom carries rho_w g times
   // this more (less, when negative) than its weight, and the water's slow sloshing takes it up.
   double level_above_draft(double l0) const { return open_water_level(l0) - beam_bottom(l0) - draft(); }
+  // How far an end load P raises the open water's level, and with it the beam away from the load:
+  // the load displaces P / k of water per unit width, which spreads over the tank's whole surface,
+  // under the beam and beside it (volume and vertical force balance), m. Hetenyi's semi-infinite
+  // beam, measured from the undisturbed level, leaves it out: a column that started at rest is
+  // deflection(P, x) - level_rise(P, l0) below its start.
+  double level_rise(double P, double l0) const { return P / foundation_modulus() / tank_length(l0); }
 
   // The water and the tank (one wall layer, `dummy_layers` behind it) up to two spacings above
   // the beam's top.
