@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The floating ice beam of scenes::FloatingIceBeam on its water, coupled, under an end load: the
 // deflection against Hetenyi's semi-infinite beam on a Winkler foundation, and the break against
-// his largest moment (docs/validation/fsi.md, "Water under a long structure"). Long runs (label
+// his largest moment (docs/validation/fsi.md, "Floating ice beam under an end load"). Long runs (label
 // "long"), tens of simulated seconds each.
 #include <doctest/doctest.h>
 
@@ -67,7 +67,8 @@ struct Deflections {
 
 struct LoadedBeamResult {
   Deflections at_end;                // at the run's end (t_end, or after the first failure's run-on)
-  double largest_balance_error = 0;  // largest |F / (W + P) - 1| of the 1 s means, from the ramp's end to the first failure
+  // Largest |F / (W + P) - 1| of the 1 s means, from 1 s after the ramp to the first failure.
+  double largest_balance_error = 0;
   double run_balance_error = 0;      // the same over the whole run
   int water_on_ice = 0;              // water particles above the ice's top face at the end
   double fluid_solves_per_step = 0;
@@ -264,8 +265,8 @@ TEST_CASE("floating beam under an end load: the deflection against Hetenyi's") {
   REQUIRE(!r.blew_up);
   std::printf("floating beam under an end load at 30 s: end %.3f mm from its shape at 4 s (%+.1f %% of Hetenyi's less "
               "the rise), profile RMS %.1f %%; from the far end %+.1f %%, RMS %.1f %%; largest |F/(W+P) - 1| of a 1 s "
-              "mean after the ramp %.5f (whole run %.5f); water on the ice %d; fluid solves per step %.2f (at most %d); "
-              "%.0f s\n",
+              "mean after the ramp %.5f (whole run %.5f); water on the ice %d; fluid solves per step %.2f (at most "
+              "%d); %.0f s\n",
               1e3 * r.at_end.end, 100 * r.at_end.from_start.end, 100 * r.at_end.from_start.rms,
               100 * r.at_end.from_far_end.end, 100 * r.at_end.from_far_end.rms, r.largest_balance_error,
               r.run_balance_error, r.water_on_ice, r.fluid_solves_per_step, r.most_fluid_solves, r.wall_seconds);
