@@ -59,8 +59,7 @@ class BeamOnFoundation {
     }
     // The springs are a distributed traction on the bottom face, which the failure check reads on
     // the surface; the end column carries the end load, a concentrated one.
-    for (const auto i : bottom_)
-      if (x[i][0] >= l0) solver_.mark_distributed_load(i);
+    for (const auto i : scene.wetted_bottom(x, l0)) solver_.mark_distributed_load(i);
   }
 
   // Steps to time t with the end load P(time) (N per unit width, downwards).
@@ -133,9 +132,10 @@ struct DeflectionCheck {
   double profile_rms = 0;    // RMS of w - w_ref over 0 <= x <= 3 / lambda, relative to w_ref at the end column
   double balance_error = 0;  // (foundation force - P) / P
   std::vector<double> x, w;  // the profile: column centres and deflections
+  double moment_error = 0;   // the moment at pi / (4 lambda) (FloatingIceBeam::column_moment) / Hetenyi's - 1
 };
 
-inline DeflectionCheck check_deflection(const BeamOnFoundation& beam, const scenes::FloatingIceBeam& scene, double P) {
+inline DeflectionCheck check_deflection(BeamOnFoundation& beam, const scenes::FloatingIceBeam& scene, double P) {
   DeflectionCheck r;
   r.load = P;
   r.w = beam.deflection();
@@ -144,6 +144,10 @@ inline DeflectionCheck check_deflection(const BeamOnFoundation& beam, const scen
   r.end_error = error.end;
   r.profile_rms = error.rms;
   r.balance_error = beam.foundation_force() / P - 1;
+  auto& solver = beam.solver();
+  const double x_f = scene.largest_moment_position();
+  r.moment_error = scene.column_moment(solver.stresses(), solver.reference_positions(), x_f, beam.l0()) /
+                       scene.moment(P, x_f) - 1;
   return r;
 }
 
@@ -180,6 +184,15 @@ inline BreakResult read_break(const IceSolver& s, std::chrono::steady_clock::tim
     if (f == largest) r.far_piece_start = std::min(r.far_piece_start, s.reference_positions()[i][0]);
   }
   return r;
+}
+
+// Every particle failure of `s`, with its reference position, as `folder/failures.csv`.
+inline void write_failures(const std::string& folder, const IceSolver& s) {
+  CsvWriter failures(folder + "/failures.csv", {"t", "particle", "x0", "y0", "sigma_1", "normal_x", "normal_y"});
+  for (const auto& e : s.failure_log()) {
+    const Vec<2> X = s.reference_positions()[e.particle];
+    failures.row({e.time, static_cast<double>(e.particle), X[0], X[1], e.sigma1, e.normal[0], e.normal[1]});
+  }
 }
 
 // The example's run (floating_ice_beam): one beam, two phases.
@@ -296,13 +309,7 @@ inline RunResult run(const scenes::FloatingIceBeam& scene, const RunOptions& o) 
   r.brk = read_break(s, wall);
   if (r.brk.failures > 0) r.brk.load_at_failure = Vec<2>(0, -load(r.brk.first_failure_time));
   r.wall_seconds = r.brk.wall_seconds;
-  if (!o.out.empty() && r.brk.failures > 0) {
-    CsvWriter failures(o.out + "/failures.csv", {"t", "particle", "x0", "y0", "sigma_1", "normal_x", "normal_y"});
-    for (const auto& e : s.failure_log()) {
-      const Vec<2> X = s.reference_positions()[e.particle];
-      failures.row({e.time, static_cast<double>(e.particle), X[0], X[1], e.sigma1, e.normal[0], e.normal[1]});
-    }
-  }
+  if (!o.out.empty() && r.brk.failures > 0) write_failures(o.out, s);
   return r;
 }
 

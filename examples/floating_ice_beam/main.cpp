@@ -1,112 +1,211 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Floating ice under an end load, on the water's Winkler foundation k = rho_w g
-// (docs/validation/fracture.md, "Ice on an elastic foundation"): a long ice beam (h = 40 mm,
-// E = 60 MPa, nu = 0.3, sigma_f = 30 kPa; scenes::FloatingIceBeam) loaded at its left end.
-// Phase 1 holds P_f / 2 and compares the settled deflection with Hetenyi's semi-infinite beam;
-// phase 2 raises the load past the breaking load P_f (Croasdale's breaking term) until the beam
-// cracks where Hetenyi's moment is largest, pi / (4 lambda) from the end. The water itself is not
-// simulated: a coupled floating beam is not verified yet (docs/validation/fsi.md, open problems).
+// Floating ice under an end load (scenes::FloatingIceBeam), against Hetenyi's semi-infinite beam
+// on the water's Winkler foundation k = rho_w g: the deflection below the breaking load P_f
+// (Croasdale's breaking term) and the break past it, where Hetenyi's moment is largest,
+// pi / (4 lambda) from the loaded end.
+//  --foundation water (the default): the ice floats on the water of its tank, coupled by IQN-ILS
+//    (h = 80 mm, 875 kg/m3; docs/validation/fsi.md, "Floating ice beam under an end load"). With
+//    fracture the load rises past P_f until the beam breaks, and the profile is compared at
+//    0.9 P_f; without, P_f / 2 is held to 30 s and compared then.
+//  --foundation springs: the same ice on springs under its bottom row, the water not simulated
+//    (h = 40 mm, 917 kg/m3; docs/validation/fracture.md, "Ice on an elastic foundation").
 // Writes the deflection profile against Hetenyi's, the load history, every particle failure and
-// VTU/PVD snapshots; plot.py renders the PNGs. `floating_ice_beam --help` lists the options.
+// VTU/PVD snapshots (with water: of the ice and the water); plot.py renders the PNGs.
+// `floating_ice_beam --help` lists the options.
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "common/case_options.hpp"
 #include "common/output_folder.hpp"
+#include "floating_ice_beam/beam_in_water.hpp"
 #include "floating_ice_beam/beam_on_foundation.hpp"
 
 namespace {
 
 struct Options {
-  double thickness = 0.04;
+  std::string foundation = "water";
+  double thickness = 0;  // 0: the foundation's own (0.08 m with water, 0.04 m on springs)
   int rows = 8;
   std::string fracture = "on";
+  double end_time = 0;  // water only; 0: the protocol's end
   std::string out = "out/floating_ice_beam";
   bool no_output = false;
 };
 
-}  // namespace
+// What both foundations report, for the summary line and summary.csv.
+struct Outcome {
+  floating_ice::DeflectionCheck deflection;
+  floating_ice::BreakResult brk;
+  double end_time = 0, wall_seconds = 0, fluid_solves_per_step = 0;
+  double moment_before_load = 0;  // N m/m at pi / (4 lambda); with water only (springs: none)
+  int most_fluid_solves = 0;
+  std::size_t particles = 0, water_particles = 0;
+  long long steps = 0;
+  std::string error;  // a blow-up's message
+};
 
-int main(int argc, char** argv) try {
-  Options o;
-  mpsfsi_examples::CaseOptions cli("floating_ice_beam",
-                                   "Floating ice under an end load on a Winkler foundation, against Hetenyi's beam");
-  cli.add("--thickness", o.thickness, "ice thickness h", "m")->check(mpsfsi_examples::positive());
-  cli.add("--rows", o.rows, "particles through the thickness (h / l0), at least 2");
-  cli.add("--fracture", o.fracture, "phase 2: raise the load past P_f until the beam breaks")
-      ->check(mpsfsi_examples::one_of({"on", "off"}));
-  cli.add("--out", o.out, "output folder");
-  cli.flag("--no-output", o.no_output, "write no files");
-  if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
-  if (cli.print_case_if_requested()) return 0;
-  if (o.rows < 2) {
-    std::fprintf(stderr, "floating_ice_beam: --rows: must be at least 2, not %d\n", o.rows);
-    return 2;
-  }
-  mpsfsi::scenes::FloatingIceBeam scene;
-  scene.thickness = o.thickness;
+Outcome run_on_springs(const mpsfsi::scenes::FloatingIceBeam& scene, const Options& o) {
   floating_ice::RunOptions run;
   run.rows = o.rows;
   run.fracture = o.fracture == "on";
   run.out = o.no_output ? std::string() : o.out;
   run.progress = true;
-  if (!run.out.empty()) {
-    mpsfsi_examples::make_output_folder(run.out);
-    cli.write_case(run.out);
-  }
-  const double l0 = o.thickness / o.rows;
-  std::printf("Floating ice beam on a Winkler foundation: h = %g m, l0 = %g m (%d rows), beam %g m, E = %g MPa, "
-              "sigma_f = %g kPa\n",
-              scene.thickness, l0, o.rows, scene.beam_length_for(l0), scene.youngs_modulus / 1e6,
-              scene.tensile_strength / 1e3);
-  std::printf("Hetenyi: 1/lambda = %.4f m, pi/(4 lambda) = %.4f m, P_f = %.3f N/m\n", 1 / scene.lambda(),
-              scene.largest_moment_position(), scene.failure_load());
   std::fprintf(stderr, "%s\n", mpsfsi::ProgressReporter::legend());
   const auto r = floating_ice::run(scene, run);
+  Outcome c;
+  c.deflection = r.deflection;
+  c.brk = r.brk;
+  c.end_time = r.end_time;
+  c.wall_seconds = r.wall_seconds;
+  c.particles = r.particles;
+  c.steps = r.steps;
+  return c;
+}
+
+Outcome run_in_water(const mpsfsi::scenes::FloatingIceBeam& scene, const Options& o) {
+  const double l0 = scene.thickness / o.rows;
+  const bool fracture = o.fracture == "on";
+  const auto load = fracture ? floating_ice::break_load(scene) : floating_ice::deflection_load(scene);
+  auto settings = floating_ice::water_settings(scene, l0, 30);
+  if (fracture) settings.profile_at = load.unloaded + load.ramp + load.hold;
+  if (o.end_time > 0) settings.t_end = o.end_time;
+  settings.out = o.no_output ? std::string() : o.out;
+  std::printf("water: %g m deep under the ice, %g m of open water; damping %.3f/s; ice inertia x%g; end load: %g s "
+              "without, a half cosine over %g s to %.2f N/m%s; to %g s at most\n",
+              scene.beam_bottom(l0), scene.tank_length(l0) - scene.beam_length_for(l0), settings.damping,
+              settings.inertia_scale, load.unloaded, load.ramp, load.ramped,
+              fracture ? ", held 2 s, then rising by 0.02 P_f per second until the beam breaks" : ", held",
+              settings.t_end);
+  const auto r = fracture ? floating_ice::run_in_water<floating_ice::IceSolver>(scene, settings, load)
+                          : floating_ice::run_in_water<mpsfsi::ElasticSolver<2>>(scene, settings, load);
+  Outcome c;
+  if (r.blew_up) c.error = r.error + " (the files written until then stay)";
+  const auto& d = r.at_profile;
+  c.deflection.load = d.load;
+  c.deflection.end_error = d.from_start.end;
+  c.deflection.profile_rms = d.from_start.rms;
+  c.deflection.balance_error = r.largest_balance_error;
+  c.deflection.x = d.x;
+  c.deflection.w = d.w;
+  c.deflection.moment_error = d.moment_error;
+  c.moment_before_load = r.moment_at_start;
+  c.brk = r.broken;
+  c.end_time = r.end_time;
+  c.wall_seconds = r.wall_seconds;
+  c.fluid_solves_per_step = r.fluid_solves_per_step;
+  c.most_fluid_solves = r.most_fluid_solves;
+  c.particles = r.ice_particles + r.water_particles;
+  c.water_particles = r.water_particles;
+  c.steps = r.steps;
+  return c;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  Options o;
+  mpsfsi_examples::CaseOptions cli(
+      "floating_ice_beam", "Floating ice under an end load, on its water or on springs, against Hetenyi's beam");
+  cli.add("--foundation", o.foundation, "water: the ice floats on simulated water; springs: a Winkler foundation")
+      ->check(mpsfsi_examples::one_of({"water", "springs"}));
+  cli.add("--thickness", o.thickness, "ice thickness h; 0: 0.08 with water, 0.04 on springs", "m");
+  cli.add("--rows", o.rows, "particles through the thickness (h / l0), at least 2");
+  cli.add("--fracture", o.fracture, "raise the load past P_f until the beam breaks")
+      ->check(mpsfsi_examples::one_of({"on", "off"}));
+  cli.add("--end-time", o.end_time, "with water: stop at this simulated time; 0: the protocol's end", "s");
+  cli.add("--out", o.out, "output folder");
+  cli.flag("--no-output", o.no_output, "write no files");
+  if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
+  const bool water = o.foundation == "water";
+  if (o.thickness == 0) o.thickness = water ? 0.08 : 0.04;
+  auto usage_error = [](const char* message, double value) {
+    std::fprintf(stderr, "floating_ice_beam: %s, not %g (see floating_ice_beam --help)\n", message, value);
+    return 2;
+  };
+  if (o.thickness < 0) return usage_error("--thickness: must be positive, or 0 for the foundation's own", o.thickness);
+  if (o.rows < 2) return usage_error("--rows: must be at least 2", o.rows);
+  if (o.end_time < 0) return usage_error("--end-time: must be positive, or 0 for the protocol's end", o.end_time);
+  if (o.end_time > 0 && !water) return usage_error("--end-time: only with --foundation water", o.end_time);
+  if (cli.print_case_if_requested()) return 0;
+  mpsfsi::scenes::FloatingIceBeam scene = water ? floating_ice::water_scene() : mpsfsi::scenes::FloatingIceBeam{};
+  scene.thickness = o.thickness;
+  if (!o.no_output) {
+    mpsfsi_examples::make_output_folder(o.out);
+    cli.write_case(o.out);
+  }
+  const double l0 = o.thickness / o.rows;
+  std::printf("Floating ice beam %s: h = %g m, l0 = %g m (%d rows), beam %g m, %g kg/m3, E = %g MPa, sigma_f = %g "
+              "kPa\n",
+              water ? "in water" : "on a Winkler foundation", scene.thickness, l0, o.rows, scene.beam_length_for(l0),
+              scene.ice_density, scene.youngs_modulus / 1e6, scene.tensile_strength / 1e3);
+  std::printf("Hetenyi: 1/lambda = %.4f m, pi/(4 lambda) = %.4f m, P_f = %.3f N/m\n", 1 / scene.lambda(),
+              scene.largest_moment_position(), scene.failure_load());
+  const auto r = water ? run_in_water(scene, o) : run_on_springs(scene, o);
+  const bool fracture = o.fracture == "on";
+  if (!r.error.empty()) {
+    std::fprintf(stderr, "floating_ice_beam: %s\n", r.error.c_str());
+    return 1;
+  }
 
   const auto& d = r.deflection;
-  std::printf("phase 1, P = P_f/2 = %.3f N/m: end deflection %.4e m, %+.2f %% from Hetenyi's; profile RMS to "
-              "3/lambda %.2f %% of it; foundation force / P - 1 = %+.1e\n",
-              d.load, d.w[0], 100 * d.end_error, 100 * d.profile_rms, d.balance_error);
+  if (d.load > 0)
+    std::printf("deflection at P = %.3f N/m (%.2f P_f): end %.4e m, %+.2f %% from Hetenyi's; profile RMS to 3/lambda "
+                "%.2f %% of it; %s %+.1e\n",
+                d.load, d.load / scene.failure_load(), d.w[0], 100 * d.end_error, 100 * d.profile_rms,
+                water ? "largest |F/(W+P) - 1| of a 1 s mean after the ramp" : "foundation force / P - 1",
+                d.balance_error);
+  if (d.load > 0) {
+    std::printf("moment at pi/(4 lambda): %+.2f %% from Hetenyi's", 100 * d.moment_error);
+    if (water)
+      std::printf("; before the load %+.2f %% of the breaking moment (+: in the load's sense)",
+                  -100 * r.moment_before_load / (scene.tensile_strength * scene.thickness * scene.thickness / 6));
+    std::printf("\n");
+  }
   const double x_f = scene.largest_moment_position(), Pf = scene.failure_load();
   const auto& b = r.brk;
-  if (run.fracture) {
+  if (fracture) {
     if (b.failures == 0) {
-      std::printf("phase 2: no failure by t = %g s\n", r.end_time);
+      std::printf("break: no failure by t = %g s\n", r.end_time);
     } else {
       const bool top = scene.beam_bottom(l0) + scene.thickness - b.first_failure[1] < l0;
-      std::printf("phase 2: first failure at t = %.4f s, x = %.4f m (%+.1f %% from pi/(4 lambda)), %s fibre, P = %.3f N/m "
+      std::printf("break: first failure at t = %.4f s, x = %.4f m (%+.1f %% from pi/(4 lambda)), %s fibre, P = %.3f N/m "
                   "(%+.1f %% of P_f); %zu failures, %zu bonds cut; %zu pieces of more than 10 particles, %zu particles "
                   "in smaller ones\n",
                   b.first_failure_time, b.first_failure[0], 100 * (b.first_failure[0] / x_f - 1), top ? "top" : "inner",
                   -b.load_at_failure[1], 100 * (-b.load_at_failure[1] / Pf - 1), b.failures, b.cut_bonds, b.pieces,
                   b.small_fragment_particles);
       if (b.pieces >= 2)
-        std::printf("phase 2: the far piece from x = %.4f m (%+.1f %% from pi/(4 lambda))\n", b.far_piece_start,
+        std::printf("break: the far piece from x = %.4f m (%+.1f %% from pi/(4 lambda))\n", b.far_piece_start,
                     100 * (b.far_piece_start / x_f - 1));
     }
   }
-  std::printf("summary: end deflection %+.2f %%, profile RMS %.2f %%, balance %+.1e", 100 * d.end_error,
-              100 * d.profile_rms, d.balance_error);
+  std::printf("summary: end deflection %+.2f %%, profile RMS %.2f %%, moment %+.2f %%, balance %+.1e",
+              100 * d.end_error, 100 * d.profile_rms, 100 * d.moment_error, d.balance_error);
+  if (water)
+    std::printf(", fluid solves per step %.2f (at most %d)", r.fluid_solves_per_step, r.most_fluid_solves);
   if (b.failures > 0)
     std::printf(", first failure x %+.1f %%, P %+.1f %%, pieces %zu", 100 * (b.first_failure[0] / x_f - 1),
                 100 * (-b.load_at_failure[1] / Pf - 1), b.pieces);
   if (b.pieces >= 2) std::printf(", break x %+.1f %%", 100 * (b.far_piece_start / x_f - 1));
-  std::printf("; %zu particles, %lld steps, %.1f s on %d threads\n", r.particles, r.steps, r.wall_seconds,
-              mpsfsi::parallel::max_threads());
-  if (!run.out.empty()) {
-    mpsfsi::CsvWriter summary(run.out + "/summary.csv",
-                              {"thickness", "l0", "beam_length", "lambda", "failure_load", "largest_moment_x", "end_error",
-                               "profile_rms", "balance_error", "failures", "first_failure_x", "first_failure_y",
-                               "load_at_failure", "pieces", "far_piece_x", "wall_s"});
-    summary.row({scene.thickness, l0, scene.beam_length_for(l0), scene.lambda(), Pf, x_f, d.end_error, d.profile_rms,
-                 d.balance_error, static_cast<double>(b.failures), b.first_failure[0], b.first_failure[1],
-                 -b.load_at_failure[1], static_cast<double>(b.pieces), b.far_piece_start, r.wall_seconds});
-  }
-  if (!run.out.empty())
+  std::printf("; %zu particles", r.particles);
+  if (water) std::printf(" (%zu of water and tank)", r.water_particles);
+  std::printf(", %lld steps, %.1f s on %d threads\n", r.steps, r.wall_seconds, mpsfsi::parallel::max_threads());
+  if (!o.no_output) {
+    mpsfsi::CsvWriter summary(o.out + "/summary.csv",
+                              {"water", "thickness", "l0", "beam_length", "lambda", "failure_load", "largest_moment_x",
+                               "profile_load", "end_error", "profile_rms", "moment_error", "moment_before_load",
+                               "balance_error", "failures",
+                               "first_failure_x", "first_failure_y", "load_at_failure", "pieces", "far_piece_x",
+                               "fluid_solves_per_step", "wall_s"});
+    summary.row({water ? 1.0 : 0.0, scene.thickness, l0, scene.beam_length_for(l0), scene.lambda(), Pf, x_f, d.load,
+                 d.end_error, d.profile_rms, d.moment_error, r.moment_before_load, d.balance_error,
+                 static_cast<double>(b.failures), b.first_failure[0],
+                 b.first_failure[1], -b.load_at_failure[1], static_cast<double>(b.pieces), b.far_piece_start,
+                 r.fluid_solves_per_step, r.wall_seconds});
     std::printf("wrote %s (case.yaml reruns this case); plot with python3 examples/floating_ice_beam/plot.py %s\n",
-                run.out.c_str(), run.out.c_str());
+                o.out.c_str(), o.out.c_str());
+  }
   return 0;
 } catch (const mpsfsi::SimulationError& e) {
   std::fprintf(stderr, "floating_ice_beam: %s\n", e.what());

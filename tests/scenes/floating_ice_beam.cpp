@@ -107,6 +107,43 @@ TEST_CASE("scenes.floating_ice_beam: the roller's particle") {
   }
 }
 
+// The wetted bottom face: every column but the end one has exactly one particle in it, the one
+// in the bottom row.
+TEST_CASE("scenes.floating_ice_beam: the wetted bottom face is the bottom row beyond the end column") {
+  scenes::FloatingIceBeam s;
+  const double l0 = s.thickness / 4;
+  std::vector<std::size_t> end_column;
+  const auto beam = s.beam_particles(l0, end_column);
+  const auto face = s.wetted_bottom(beam.positions(), l0);
+  const auto columns = static_cast<std::size_t>(std::lround(s.beam_length_for(l0) / l0));
+  REQUIRE(face.size() == columns - 1);
+  for (const auto i : face) {
+    CHECK(beam.positions()[i][1] == doctest::Approx(s.beam_bottom(l0) + 0.5 * l0));
+    CHECK(beam.positions()[i][0] > l0);
+  }
+}
+
+// A stress linear through the thickness, sigma_xx = -12 M (y - y_mid) / h^3 (beam theory), carries
+// the moment M exactly, at any number of rows; the column is the one x falls in.
+TEST_CASE("scenes.floating_ice_beam: the column moment is exact for beam theory's stress") {
+  scenes::FloatingIceBeam s;
+  for (const int rows : {2, 4, 8}) {
+    const double l0 = s.thickness / rows, M = -3.7, mid = s.beam_bottom(l0) + 0.5 * s.thickness;
+    std::vector<std::size_t> end_column;
+    const auto beam = s.beam_particles(l0, end_column);
+    MatArray<2, double> stresses(beam.size(), Mat<2, double>::Zero());
+    for (std::size_t i = 0; i < beam.size(); ++i) {
+      const auto& x = beam.positions()[i];
+      // Only the column at x = 0.3 m carries the moment: the read-out must not mix columns.
+      if (std::floor(x[0] / l0) == std::floor(0.3 / l0))
+        stresses[i](0, 0) = -12 * M * (x[1] - mid) / std::pow(s.thickness, 3);
+    }
+    CHECK(s.column_moment(stresses, beam.positions(), 0.3, l0) == doctest::Approx(M).epsilon(1e-12));
+    CHECK(s.column_moment(stresses, beam.positions(), 0.3 + l0, l0) == 0.0);
+    CHECK_THROWS_AS(s.column_moment(MatArray<2, double>(1), beam.positions(), 0.3, l0), InvalidInput);
+  }
+}
+
 // The level misses the draft unless the draft is a whole number of rows: 917 kg/m3 ice 80 mm thick
 // floats 73.36 mm deep, 3.36 mm below the 7-row level at l0 = 10 mm; at 875 kg/m3 it floats exactly
 // 7 rows deep.

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "floating_ice_beam/beam_in_water.hpp"
 #include "mpsfsi/fluid/fluid_solver.hpp"
 #include "mpsfsi/fsi/fsi_coupler.hpp"
 #include "mpsfsi/scenes/elastic_gate.hpp"
@@ -19,7 +20,6 @@
 #include "mpsfsi/scenes/tank.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 #include "support/tolerance.hpp"
-#include "support/floating_ice_in_water.hpp"
 #include "support/water_under_structure.hpp"
 
 using namespace mpsfsi;
@@ -133,9 +133,9 @@ FloatingBeamResult floating_beam(double inertia_scale, double dt, double t_end, 
   std::vector<std::size_t> end_column;
   auto beam = scene.beam_particles(l0, end_column);
   const auto roller = scene.roller_particle(beam, end_column, l0);
-  ElasticSolver<2> ice(std::move(beam), test::floating_ice_parameters(scene, l0, inertia_scale));
+  ElasticSolver<2> ice(std::move(beam), floating_ice::floating_ice_parameters(scene, l0, inertia_scale));
   ice.support(roller, Vec<2>(1, 0));
-  const auto fp = test::water_under_ice_parameters(l0, dt);
+  const auto fp = floating_ice::water_under_ice_parameters(l0, dt);
   CouplingParameters cp;
   cp.interface_acceleration = interface_acceleration;
   FsiCoupler<FluidSolver<2, test::OwnValueGradientPolicies<2>>, ElasticSolver<2>, Scheme> coupler(

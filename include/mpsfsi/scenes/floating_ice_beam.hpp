@@ -120,6 +120,27 @@ struct FloatingIceBeam {
     return e;
   }
 
+  // The bending moment (N m per unit width) carried by the beam's column nearest x, from its
+  // particles' stresses: the moment of sigma_xx about the mid-thickness, with Hetenyi's sign
+  // (negative where the top fibre is in tension). Each particle stands for a layer l0 thick, and
+  // the sum is divided by 1 - 1 / n^2 (n rows), which makes it exact for a stress linear through
+  // the thickness, as beam theory's: the midpoint sum of (y - y_mid)^2 over n layers is
+  // (h^3 / 12)(1 - 1 / n^2). `stresses` and `reference` are per particle (ElasticSolver::stresses,
+  // reference_positions).
+  double column_moment(const MatArray<2, double>& stresses, const VecArray<2, double>& reference, double x,
+                       double l0) const {
+    check(l0);
+    if (stresses.size() != reference.size())
+      detail::throw_invalid("scenes::FloatingIceBeam::column_moment", "needs one stress per particle");
+    const auto column = static_cast<long>(std::floor(std::clamp(x, 0.0, beam_length_for(l0) - 0.5 * l0) / l0));
+    const double mid = beam_bottom(l0) + 0.5 * thickness, rows = std::round(thickness / l0);
+    double sum = 0;
+    for (std::size_t i = 0; i < reference.size(); ++i)
+      if (static_cast<long>(std::floor(reference[i][0] / l0)) == column)
+        sum += stresses[i](0, 0) * (reference[i][1] - mid) * l0;
+    return -sum / (1 - 1 / (rows * rows));
+  }
+
   // Lengths rounded to whole spacings, the beam's bottom y_b on the water's lattice (a whole
   // number of spacings above the floor).
   double beam_length_for(double l0) const {
@@ -177,6 +198,19 @@ struct FloatingIceBeam {
       if (closer > 1e-9 * l0 || (std::abs(closer) <= 1e-9 * l0 && y < best_y)) best = i;
     }
     return best;
+  }
+
+  // The bottom row's particles beyond the end column (x >= l0), indices into `reference` (the
+  // beam's reference positions): the face the water, or a Winkler foundation, loads as a
+  // distributed traction, which the failure read-out treats as such
+  // (ElasticSolver::mark_distributed_load). The end column carries the concentrated end load.
+  std::vector<std::size_t> wetted_bottom(const VecArray<2, double>& reference, double l0) const {
+    check(l0);
+    const double row_top = beam_bottom(l0) + l0;
+    std::vector<std::size_t> face;
+    for (std::size_t i = 0; i < reference.size(); ++i)
+      if (reference[i][1] < row_top && reference[i][0] >= l0) face.push_back(i);
+    return face;
   }
 
  private:
