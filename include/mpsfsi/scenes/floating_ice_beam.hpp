@@ -120,7 +120,7 @@ struct FloatingIceBeam {
     return e;
   }
 
-  // The bending moment (N m per unit width) carried by the beam's column nearest x, from its
+  // The bending moment (N m per unit width) carried by the beam's column that x falls in, from its
   // particles' stresses: the moment of sigma_xx about the mid-thickness, with Hetenyi's sign
   // (negative where the top fibre is in tension). Each particle stands for a layer l0 thick, and
   // the sum is divided by 1 - 1 / n^2 (n rows), which makes it exact for a stress linear through
