@@ -27,6 +27,7 @@ struct Options {
   std::string foundation = "water";
   double thickness = 0;  // 0: the foundation's own (0.08 m with water, 0.04 m on springs)
   int rows = 8;
+  double ice_density = 0;  // 0: the foundation's own (875 kg/m3 with water, 917 kg/m3 on springs)
   std::string fracture = "on";
   double end_time = 0;  // water only; 0: the protocol's end
   std::string out = "out/floating_ice_beam";
@@ -110,6 +111,8 @@ int main(int argc, char** argv) try {
   cli.add("--foundation", o.foundation, "water: the ice floats on simulated water; springs: a Winkler foundation")
       ->check(mpsfsi_examples::one_of({"water", "springs"}));
   cli.add("--thickness", o.thickness, "ice thickness h; 0: 0.08 with water, 0.04 on springs", "m");
+  cli.add("--ice-density", o.ice_density, "ice density; 0: 875 with water (its draft whole rows at 8 rows), 917 on springs",
+          "kg/m3");
   cli.add("--rows", o.rows, "particles through the thickness (h / l0), at least 2");
   cli.add("--fracture", o.fracture, "raise the load past P_f until the beam breaks")
       ->check(mpsfsi_examples::one_of({"on", "off"}));
@@ -124,12 +127,20 @@ int main(int argc, char** argv) try {
     return 2;
   };
   if (o.thickness < 0) return usage_error("--thickness: must be positive, or 0 for the foundation's own", o.thickness);
+  if (o.ice_density < 0) return usage_error("--ice-density: must be positive, or 0 for the foundation's own", o.ice_density);
+  if (const double water_density = mpsfsi::scenes::FloatingIceBeam{}.water_density;
+      water && o.ice_density >= water_density) {
+    std::fprintf(stderr, "floating_ice_beam: --ice-density: must be below the water's %g kg/m3 for the ice to float, "
+                 "not %g (see floating_ice_beam --help)\n", water_density, o.ice_density);
+    return 2;
+  }
   if (o.rows < 2) return usage_error("--rows: must be at least 2", o.rows);
   if (o.end_time < 0) return usage_error("--end-time: must be positive, or 0 for the protocol's end", o.end_time);
   if (o.end_time > 0 && !water) return usage_error("--end-time: only with --foundation water", o.end_time);
   if (cli.print_case_if_requested()) return 0;
   mpsfsi::scenes::FloatingIceBeam scene = water ? floating_ice::water_scene() : mpsfsi::scenes::FloatingIceBeam{};
   scene.thickness = o.thickness;
+  if (o.ice_density > 0) scene.ice_density = o.ice_density;
   if (!o.no_output) {
     mpsfsi_examples::make_output_folder(o.out);
     cli.write_case(o.out);
