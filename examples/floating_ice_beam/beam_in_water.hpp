@@ -18,6 +18,7 @@
 #include <vector>
 
 #include <mpsfsi/fluid/fluid_solver.hpp>
+#include <mpsfsi/fluid/water_under_structure.hpp>
 #include <mpsfsi/fsi/fsi_coupler.hpp>
 #include <mpsfsi/io/csv_writer.hpp>
 #include <mpsfsi/io/pvd_writer.hpp>
@@ -30,22 +31,16 @@
 
 namespace floating_ice {
 
-// The water under the ice: the settings for water under a structure (docs/theory.md, section 2.9)
-// with the pressure gradient about each particle's own pressure, the form that keeps water under a
-// long lid (section 2.9), and negative pressures kept.
-struct UnderIceWater : FluidDefaults<2> {
-  using free_surface = CentroidDeviationSurface<>;
-  static constexpr GradientReference pressure_gradient_reference = GradientReference::own_value;
-};
+// The water under the ice: the settings for water under a long structure (docs/theory.md, section
+// 2.9), with negative pressures kept.
+using UnderIceWater = WaterUnderLongStructure<2>;
 
 inline FluidParameters<2> water_under_ice_parameters(double l0, double dt) {
   FluidParameters<2> fp;
   fp.l0 = l0;
   fp.dt = dt;
-  fp.wall_condition = WallCondition::neumann;
-  fp.density_term_compression_only = false;
   fp.negative_pressure = NegativePressure::keep;
-  return fp;
+  return under_structure(fp);
 }
 
 // The floating beam's ice: scenes::FloatingIceBeam's material in plane stress, its inertia scaled by

@@ -29,6 +29,7 @@
 #include "mpsfsi/fluid/policy_checks.hpp"
 #include "mpsfsi/fluid/ssor_cg.hpp"
 #include "mpsfsi/fluid/ppe.hpp"
+#include "mpsfsi/fluid/water_under_structure.hpp"
 // mpsfsi/fluid/hypre_amg.hpp is left out: it needs hypre and MPI (target mpsfsi::hypre).
 
 #include "mpsfsi/solid/bond_viscosity.hpp"

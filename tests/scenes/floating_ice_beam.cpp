@@ -211,6 +211,76 @@ TEST_CASE("scenes.floating_ice_beam: column deflections and their error against 
   CHECK_THROWS_AS(s.profile_error(w, 0, l0), InvalidInput);
 }
 
+// The 3D strip: the 2D section extruded over the width, 4 rows and 16 particles across a strip 4
+// thicknesses wide; the water fills the channel's width under the strip and beside it, between
+// side walls; the roller is the end column's lower middle row across the width.
+TEST_CASE("scenes.floating_ice_beam: the 3D strip in its channel") {
+  scenes::FloatingIceBeam s;
+  s.thickness = 0.08;
+  s.width = 4 * s.thickness;
+  const double l0 = s.thickness / 4, L = s.beam_length_for(l0), W = s.width_for(l0);
+  REQUIRE(W == doctest::Approx(0.32));
+  const auto columns = static_cast<std::size_t>(std::lround(L / l0)), across = std::size_t{16};
+  std::vector<std::size_t> end_column;
+  const auto beam = s.beam_particles<3>(l0, end_column);
+  CHECK(beam.size() == columns * 4 * across);
+  CHECK(end_column.size() == 4 * across);
+  const auto roller = s.roller_particles(beam, end_column, l0);
+  REQUIRE(roller.size() == across);
+  for (const auto i : roller) {
+    CHECK(beam.positions()[i][0] == doctest::Approx(l0 / 2));
+    CHECK(beam.positions()[i][1] == doctest::Approx(s.beam_bottom(l0) + 1.5 * l0));
+  }
+  const auto face = s.wetted_bottom(beam.positions(), l0);
+  CHECK(face.size() == (columns - 1) * across);
+  const auto water = s.fluid_particles<3>(l0);
+  const double yb = s.beam_bottom(l0), level = s.open_water_level(l0);
+  const auto rows_under = static_cast<std::size_t>(std::lround(yb / l0));
+  const auto open_columns = static_cast<std::size_t>(std::lround((s.tank_length(l0) - L) / l0));
+  const auto open_rows = static_cast<std::size_t>(std::lround(level / l0));
+  std::size_t fluid = 0, side_walls = 0;
+  double closest = 1e300;
+  for (std::size_t i = 0; i < water.size(); ++i) {
+    const auto& x = water.positions()[i];
+    for (std::size_t j = 0; j < beam.size(); j += 29) closest = std::min(closest, (x - beam.positions()[j]).norm());
+    if (water.kinds()[i] != ParticleKind::fluid) {
+      if (x[2] < 0 || x[2] > W) ++side_walls;
+      continue;
+    }
+    ++fluid;
+    CHECK(x[1] < (x[0] < L ? yb : level));
+    CHECK(x[2] > 0);
+    CHECK(x[2] < W);
+  }
+  CHECK(fluid == (columns * rows_under + open_columns * open_rows) * across);
+  CHECK(side_walls > 0);
+  CHECK(closest >= l0 * (1 - 1e-9));
+}
+
+// Per unit width in 3D: beam theory's linear stress across the whole width reads back its moment
+// per unit width, and a bent strip its column deflections, as in 2D.
+TEST_CASE("scenes.floating_ice_beam: the 3D strip's column moment and deflections") {
+  scenes::FloatingIceBeam s;
+  s.thickness = 0.08;
+  s.width = 0.16;
+  const double l0 = s.thickness / 4, M = -3.7, P = 20, mid = s.beam_bottom(l0) + 0.5 * s.thickness;
+  std::vector<std::size_t> end_column;
+  const auto beam = s.beam_particles<3>(l0, end_column);
+  MatArray<3, double> stresses(beam.size(), Mat<3, double>::Zero());
+  auto bent = beam.positions();
+  for (std::size_t i = 0; i < beam.size(); ++i) {
+    const auto& x = beam.positions()[i];
+    if (std::floor(x[0] / l0) == std::floor(0.3 / l0))
+      stresses[i](0, 0) = -12 * M * (x[1] - mid) / std::pow(s.thickness, 3);
+    bent[i][1] -= s.deflection(P, x[0]);
+  }
+  CHECK(s.column_moment(stresses, beam.positions(), 0.3, l0) == doctest::Approx(M).epsilon(1e-12));
+  const auto w = s.column_deflections(bent, beam.positions(), l0);
+  CHECK(s.profile_error(w, P, l0).rms <= 1e-12);
+  s.width = l0;
+  CHECK_THROWS_AS(s.beam_particles<3>(l0, end_column), InvalidInput);  // one particle across
+}
+
 TEST_CASE("scenes.floating_ice_beam: spacings that do not fit are refused") {
   scenes::FloatingIceBeam s;
   std::vector<std::size_t> end_column;

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "mpsfsi/fluid/fluid_solver.hpp"
+#include "mpsfsi/fluid/water_under_structure.hpp"
 #include "mpsfsi/scenes/dam_break.hpp"
-#include "support/water_under_structure.hpp"
 
 using namespace mpsfsi;
 
@@ -132,7 +132,7 @@ TEST_CASE("verification.fluid: dam break 2D with Neumann walls") {
 TEST_CASE("verification.fluid: dam break 2D with the settings for water under a structure") {
   // The same case and tolerances with Neumann walls, CentroidDeviationSurface and the full density
   // term, the settings that keep water under a lid (hydrostatic.cpp).
-  dam_break_2d<test::WaterUnderStructurePolicies<2>>(WallCondition::neumann, false);
+  dam_break_2d<WaterUnderStructure<2>>(WallCondition::neumann, false);
 }
 
 TEST_CASE("verification.fluid: dam break 3D at coarse resolution runs to completion") {
@@ -162,7 +162,7 @@ TEST_SUITE("validation.fluid") {
 TEST_CASE("validation.fluid: dam break 2D with the settings and the own-value gradient") {
   // The same case and tolerances with the settings for water under a structure and the pressure
   // gradient taken about each particle's own pressure (hydrostatic.cpp, water under a long lid).
-  dam_break_2d<test::OwnValueGradientPolicies<2>>(WallCondition::neumann, false);
+  dam_break_2d<WaterUnderLongStructure<2>>(WallCondition::neumann, false);
 }
 
 }  // TEST_SUITE

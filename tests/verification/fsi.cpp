@@ -12,6 +12,7 @@
 
 #include "floating_ice_beam/beam_in_water.hpp"
 #include "mpsfsi/fluid/fluid_solver.hpp"
+#include "mpsfsi/fluid/water_under_structure.hpp"
 #include "mpsfsi/fsi/fsi_coupler.hpp"
 #include "mpsfsi/scenes/elastic_gate.hpp"
 #include "mpsfsi/scenes/floating_ice_beam.hpp"
@@ -20,7 +21,6 @@
 #include "mpsfsi/scenes/tank.hpp"
 #include "mpsfsi/solid/elastic_solver.hpp"
 #include "support/tolerance.hpp"
-#include "support/water_under_structure.hpp"
 
 using namespace mpsfsi;
 
@@ -138,7 +138,7 @@ FloatingBeamResult floating_beam(double inertia_scale, double dt, double t_end, 
   const auto fp = floating_ice::water_under_ice_parameters(l0, dt);
   CouplingParameters cp;
   cp.interface_acceleration = interface_acceleration;
-  FsiCoupler<FluidSolver<2, test::OwnValueGradientPolicies<2>>, ElasticSolver<2>, Scheme> coupler(
+  FsiCoupler<FluidSolver<2, WaterUnderLongStructure<2>>, ElasticSolver<2>, Scheme> coupler(
       scene.fluid_particles(l0), fp, std::move(ice), cp);
   const double weight = scene.ice_density * scene.gravity * scene.thickness * scene.beam_length_for(l0);
   const auto& ice_x = coupler.solid().particles().positions();

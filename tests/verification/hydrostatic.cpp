@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "mpsfsi/fluid/fluid_solver.hpp"
+#include "mpsfsi/fluid/water_under_structure.hpp"
 #include "mpsfsi/scenes/floating_ice_beam.hpp"
 #include "mpsfsi/scenes/tank.hpp"
 #include "support/tolerance.hpp"
-#include "support/water_under_structure.hpp"
 
 using namespace mpsfsi;
 
@@ -233,7 +233,7 @@ LidResult water_under_lid(double lid_length, double l0, double settle, double wi
 // Water under a lid of `lid_length` with the settings for water under a structure, to 2 s: the
 // checks of the 1.5 m case below. The step is 2 ms at l0 = 10 mm and scales with l0 (the same
 // Courant number for the same flow).
-template <class Policies = test::WaterUnderStructurePolicies<2>>
+template <class Policies = WaterUnderStructure<2>>
 void check_water_under_lid_under_structure(double lid_length, double l0 = 0.01, double end = 2.0) {
   const double dt = 2e-3 * l0 / 0.01;
   const auto r = water_under_lid<Policies>(lid_length, l0, 0.3, end, end, dt, WallCondition::neumann, false);
@@ -306,7 +306,7 @@ TEST_CASE("verification.fluid: water under a lid with Neumann walls: the water s
 // structure"): Neumann walls, CentroidDeviationSurface and the full density term. The open tank,
 // same case and tolerances.
 TEST_CASE("verification.fluid: hydrostatic tank 2D with the settings for water under a structure") {
-  run_hydrostatic<2, test::WaterUnderStructurePolicies<2>>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann,
+  run_hydrostatic<2, WaterUnderStructure<2>>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann,
                                                            false);
 }
 
@@ -362,11 +362,11 @@ TEST_CASE("validation.fluid: water under a 1.5 m lid at l0 = 5 mm with the setti
 // water holds (the run does not stop, no lid particle at P = 0) but the load is 5 % above the
 // reference: exactly that one check is expected to fail while it stands.
 TEST_CASE("validation.fluid: water under a 3 m lid with the settings and the own-value gradient") {
-  check_water_under_lid_under_structure<test::OwnValueGradientPolicies<2>>(3.0);
+  check_water_under_lid_under_structure<WaterUnderLongStructure<2>>(3.0);
 }
 
 TEST_CASE("validation.fluid: water under a 5.06 m lid with the settings and the own-value gradient") {
-  check_water_under_lid_under_structure<test::OwnValueGradientPolicies<2>>(5.06);
+  check_water_under_lid_under_structure<WaterUnderLongStructure<2>>(5.06);
 }
 
 // The 5.06 m lid held over 10 s instead of 2 s: a known limitation (docs/validation/fsi.md, open
@@ -376,12 +376,12 @@ TEST_CASE("validation.fluid: water under a 5.06 m lid with the settings and the 
 // should_fail, to be turned into a plain test once the water holds.
 TEST_CASE("validation.fluid: water under a 5.06 m lid with the settings and the own-value gradient for 10 s "
           "(known limitation)" * doctest::should_fail()) {
-  check_water_under_lid_under_structure<test::OwnValueGradientPolicies<2>>(5.06, 0.01, 10.0);
+  check_water_under_lid_under_structure<WaterUnderLongStructure<2>>(5.06, 0.01, 10.0);
 }
 
 TEST_CASE("validation.fluid: water under a 1.5 m lid at l0 = 5 mm with the settings and the own-value gradient "
           "(known limitation)" * doctest::expected_failures(1)) {
-  check_water_under_lid_under_structure<test::OwnValueGradientPolicies<2>>(1.5, 0.005);
+  check_water_under_lid_under_structure<WaterUnderLongStructure<2>>(1.5, 0.005);
 }
 
 // What the own-value gradient costs in the open tank (docs/validation/fluid.md): the pressure
@@ -389,7 +389,7 @@ TEST_CASE("validation.fluid: water under a 1.5 m lid at l0 = 5 mm with the setti
 // one check is expected to fail while it stands.
 TEST_CASE("validation.fluid: hydrostatic tank 2D with the settings and the own-value gradient (known limitation)" *
           doctest::expected_failures(1)) {
-  run_hydrostatic<2, test::OwnValueGradientPolicies<2>>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann, false);
+  run_hydrostatic<2, WaterUnderLongStructure<2>>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann, false);
 }
 
 }  // TEST_SUITE

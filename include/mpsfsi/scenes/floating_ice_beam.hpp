@@ -35,6 +35,11 @@ namespace scenes {
 // the far end, open water up to the beam's draft (to the nearest row). The tank is water_length
 // long, so the open water is water_length - beam_length.
 //
+// In 3D (the member functions' Dim = 3) the same section is extruded along z over `width`: the ice
+// is a strip across a channel of that width, its long sides against the channel's side walls,
+// which, like the end wall, do not hold it. A strip a few thicknesses wide bends as a beam with
+// free sides (plane stress, D = E h^3 / 12); all quantities per unit width.
+//
 // The tank wall does not hold the beam: FsiCoupler has no contact between a structure and the
 // tank's fixed walls. The open water pushes on the far end face with rho_w g d^2 / 2 per unit
 // width (d the wetted depth of the face) and nothing pushes back on the loaded end, so a free beam
@@ -55,6 +60,7 @@ struct FloatingIceBeam {
   double water_density = 1000;      // kg/m3
   double gravity = 9.81;            // m/s2
   bool plane_strain = false;        // the plane model of the 2D beam: D = E' h^3 / 12
+  double width = 0;                 // 3D: the strip's and the channel's width along z, m
 
   // E' of the plane model: E in plane stress, E / (1 - nu^2) in plane strain.
   double plane_modulus() const {
@@ -82,8 +88,9 @@ struct FloatingIceBeam {
 
   // Deflection (m, downwards) of each of the beam's columns: the mean over the column's particles of
   // how far each lies below its reference position. Column c counts from the loaded end and is
-  // centred at x = (c + 1/2) l0.
-  std::vector<double> column_deflections(const VecArray<2, double>& positions, const VecArray<2, double>& reference,
+  // centred at x = (c + 1/2) l0; in 3D it spans the width.
+  template <int Dim>
+  std::vector<double> column_deflections(const VecArray<Dim, double>& positions, const VecArray<Dim, double>& reference,
                                          double l0) const {
     const auto columns = static_cast<std::size_t>(std::lround(beam_length_for(l0) / l0));
     std::vector<double> w(columns, 0.0);
@@ -122,14 +129,15 @@ struct FloatingIceBeam {
 
   // The bending moment (N m per unit width) carried by the beam's column that x falls in, from its
   // particles' stresses: the moment of sigma_xx about the mid-thickness, with Hetenyi's sign
-  // (negative where the top fibre is in tension). Each particle stands for a layer l0 thick, and
-  // the sum is divided by 1 - 1 / n^2 (n rows), which makes it exact for a stress linear through
-  // the thickness, as beam theory's: the midpoint sum of (y - y_mid)^2 over n layers is
-  // (h^3 / 12)(1 - 1 / n^2). `stresses` and `reference` are per particle (ElasticSolver::stresses,
-  // reference_positions).
-  double column_moment(const MatArray<2, double>& stresses, const VecArray<2, double>& reference, double x,
+  // (negative where the top fibre is in tension). Each particle stands for a layer l0 thick (in 3D,
+  // l0 thick and l0 wide, the sum divided by the width), and the sum is divided by 1 - 1 / n^2
+  // (n rows), which makes it exact for a stress linear through the thickness, as beam theory's: the
+  // midpoint sum of (y - y_mid)^2 over n layers is (h^3 / 12)(1 - 1 / n^2). `stresses` and
+  // `reference` are per particle (ElasticSolver::stresses, reference_positions).
+  template <int Dim>
+  double column_moment(const MatArray<Dim, double>& stresses, const VecArray<Dim, double>& reference, double x,
                        double l0) const {
-    check(l0);
+    check<Dim>(l0);
     if (stresses.size() != reference.size())
       detail::throw_invalid("scenes::FloatingIceBeam::column_moment", "needs one stress per particle");
     const auto column = static_cast<long>(std::floor(std::clamp(x, 0.0, beam_length_for(l0) - 0.5 * l0) / l0));
@@ -138,6 +146,7 @@ struct FloatingIceBeam {
     for (std::size_t i = 0; i < reference.size(); ++i)
       if (static_cast<long>(std::floor(reference[i][0] / l0)) == column)
         sum += stresses[i](0, 0) * (reference[i][1] - mid) * l0;
+    if constexpr (Dim == 3) sum *= l0 / width_for(l0);
     return -sum / (1 - 1 / (rows * rows));
   }
 
@@ -148,6 +157,7 @@ struct FloatingIceBeam {
     return std::ceil(L / l0 - 1e-9) * l0;
   }
   double beam_bottom(double l0) const { return std::round(water_depth / l0) * l0; }
+  double width_for(double l0) const { return std::round(width / l0) * l0; }
   double tank_length(double l0) const { return beam_length_for(l0) + std::round(open_water / l0) * l0; }
   // The open water's surface: the beam's draft above y_b, to the nearest row.
   double open_water_level(double l0) const { return beam_bottom(l0) + std::round(draft() / l0) * l0; }
@@ -163,49 +173,63 @@ struct FloatingIceBeam {
   double level_rise(double P, double l0) const { return P / foundation_modulus() / tank_length(l0); }
 
   // The water and the tank (one wall layer, `dummy_layers` behind it) up to two spacings above
-  // the beam's top.
-  ParticleSet<2> fluid_particles(double l0, int dummy_layers = 4) const {
-    check(l0);
+  // the beam's top; in 3D the channel's side walls as well.
+  template <int Dim = 2>
+  ParticleSet<Dim> fluid_particles(double l0, int dummy_layers = 4) const {
+    check<Dim>(l0);
     const double yb = beam_bottom(l0), L = beam_length_for(l0), T = tank_length(l0);
-    ParticleSet<2> set;
-    add_block(set, Vec<2>(0, 0), Vec<2>(L, yb), l0, ParticleKind::fluid);
-    add_block(set, Vec<2>(L, 0), Vec<2>(T, open_water_level(l0)), l0, ParticleKind::fluid);
-    add_tank(set, Vec<2>(T, yb + thickness + 2 * l0), l0, dummy_layers);
+    ParticleSet<Dim> set;
+    add_block(set, point<Dim>(0, 0, 0), point<Dim>(L, yb, width_for(l0)), l0, ParticleKind::fluid);
+    add_block(set, point<Dim>(L, 0, 0), point<Dim>(T, open_water_level(l0), width_for(l0)), l0, ParticleKind::fluid);
+    add_tank(set, point<Dim>(T, yb + thickness + 2 * l0, width_for(l0)), l0, dummy_layers);
     return set;
   }
 
-  // The beam, [0, L] x [y_b, y_b + h]; `end_column` lists the particles of the loaded end's
-  // column (x < l0).
-  ParticleSet<2> beam_particles(double l0, std::vector<std::size_t>& end_column) const {
-    check(l0);
+  // The beam, [0, L] x [y_b, y_b + h] (x [0, width] in 3D); `end_column` lists the particles of
+  // the loaded end's column (x < l0).
+  template <int Dim = 2>
+  ParticleSet<Dim> beam_particles(double l0, std::vector<std::size_t>& end_column) const {
+    check<Dim>(l0);
     const double yb = beam_bottom(l0);
-    auto set = material_block<2>(Vec<2>(0, yb), Vec<2>(beam_length_for(l0), yb + thickness), l0);
-    end_column = select(set, [&](const Vec<2>& x) { return x[0] < l0; });
+    auto set = material_block<Dim>(point<Dim>(0, yb, 0), point<Dim>(beam_length_for(l0), yb + thickness, width_for(l0)),
+                                   l0);
+    end_column = select(set, [&](const Vec<Dim>& x) { return x[0] < l0; });
     return set;
   }
 
-  // The particle of `end_column` (from beam_particles) nearest the beam's mid-thickness, the lower
-  // one of two equally near: the roller's (see above). `beam` is the set beam_particles returned.
+  // The particles of `end_column` (from beam_particles) in the row nearest the beam's
+  // mid-thickness, the lower of two equally near: the roller's (see above), one particle in 2D,
+  // one across the width in 3D. `beam` is the set beam_particles returned.
+  template <int Dim>
+  std::vector<std::size_t> roller_particles(const ParticleSet<Dim>& beam, const std::vector<std::size_t>& end_column,
+                                            double l0) const {
+    if (end_column.empty())
+      detail::throw_invalid("scenes::FloatingIceBeam::roller_particles", "the end column is empty");
+    const double mid = beam_bottom(l0) + 0.5 * thickness;
+    double best_y = beam.positions().at(end_column.front())[1];
+    for (const auto i : end_column) {
+      const double y = beam.positions().at(i)[1];
+      const double closer = std::abs(best_y - mid) - std::abs(y - mid);
+      if (closer > 1e-9 * l0 || (std::abs(closer) <= 1e-9 * l0 && y < best_y)) best_y = y;
+    }
+    std::vector<std::size_t> row;
+    for (const auto i : end_column)
+      if (std::abs(beam.positions()[i][1] - best_y) <= 1e-9 * l0) row.push_back(i);
+    return row;
+  }
+  // The 2D beam's roller: its one particle.
   std::size_t roller_particle(const ParticleSet<2>& beam, const std::vector<std::size_t>& end_column,
                               double l0) const {
-    if (end_column.empty())
-      detail::throw_invalid("scenes::FloatingIceBeam::roller_particle", "the end column is empty");
-    const double mid = beam_bottom(l0) + 0.5 * thickness;
-    std::size_t best = end_column.front();
-    for (const auto i : end_column) {
-      const double y = beam.positions().at(i)[1], best_y = beam.positions()[best][1];
-      const double closer = std::abs(best_y - mid) - std::abs(y - mid);
-      if (closer > 1e-9 * l0 || (std::abs(closer) <= 1e-9 * l0 && y < best_y)) best = i;
-    }
-    return best;
+    return roller_particles(beam, end_column, l0).front();
   }
 
   // The bottom row's particles beyond the end column (x >= l0), indices into `reference` (the
   // beam's reference positions): the face the water, or a Winkler foundation, loads as a
   // distributed traction, which the failure read-out treats as such
   // (ElasticSolver::mark_distributed_load). The end column carries the concentrated end load.
-  std::vector<std::size_t> wetted_bottom(const VecArray<2, double>& reference, double l0) const {
-    check(l0);
+  template <int Dim>
+  std::vector<std::size_t> wetted_bottom(const VecArray<Dim, double>& reference, double l0) const {
+    check<Dim>(l0);
     const double row_top = beam_bottom(l0) + l0;
     std::vector<std::size_t> face;
     for (std::size_t i = 0; i < reference.size(); ++i)
@@ -214,12 +238,25 @@ struct FloatingIceBeam {
   }
 
  private:
+  template <int Dim>
+  static Vec<Dim> point(double x, double y, double z) {
+    static_assert(Dim == 2 || Dim == 3, "scenes::FloatingIceBeam is 2D or 3D");
+    if constexpr (Dim == 2) {
+      return Vec<2>(x, y);
+    } else {
+      return Vec<3>(x, y, z);
+    }
+  }
+
+  template <int Dim = 2>
   void check(double l0) const {
     if (!(l0 > 0) || !(thickness >= 2 * l0) || std::abs(thickness / l0 - std::round(thickness / l0)) > 1e-6)
       detail::throw_invalid("scenes::FloatingIceBeam",
                             "l0 must be positive and divide the thickness into at least two whole rows");
     if (!(water_depth >= 4 * l0) || !(open_water >= 4 * l0))
       detail::throw_invalid("scenes::FloatingIceBeam", "the water depth and the open water need at least 4 spacings");
+    if (Dim == 3 && !(width >= 2 * l0))
+      detail::throw_invalid("scenes::FloatingIceBeam", "in 3D the width needs at least 2 spacings");
   }
 };
 
