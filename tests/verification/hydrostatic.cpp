@@ -306,8 +306,7 @@ TEST_CASE("verification.fluid: water under a lid with Neumann walls: the water s
 // structure"): Neumann walls, CentroidDeviationSurface and the full density term. The open tank,
 // same case and tolerances.
 TEST_CASE("verification.fluid: hydrostatic tank 2D with the settings for water under a structure") {
-  run_hydrostatic<2, WaterUnderStructure<2>>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann,
-                                                           false);
+  run_hydrostatic<2, WaterUnderStructure<2>>(0.2, 0.2, 0.005, 1.0, 0.5, 5e-4, WallCondition::neumann, false);
 }
 
 // The same settings under the lid, run to 2 s. The reference load takes P = 0 where the solver
