@@ -83,6 +83,24 @@ TEST_CASE_TEMPLATE("core.neighbor_search: matches brute force", C, Case<2, CellL
     CHECK(list.count(centre) == (Dim == 2 ? 12 : 32));
   }
 
+  SUBCASE("pairs tied at the radius in the reference arithmetic") {
+    // The radius is set so that r * r equals the squared distance of points 0 and 1 as
+    // detail::squared_distance forms it: the search must keep that pair, whichever way (one
+    // candidate at a time or several side by side) it forms the distance. About 25 points a
+    // cell, so the runs are long enough for the side-by-side path.
+    int tied = 0;
+    for (unsigned trial = 0; trial < 60; ++trial) {
+      const auto pts = random_points<Dim>(Dim == 2 ? 250 : 700, 3.0, 100 + trial);
+      const double d2 = detail::squared_distance<Dim, double>(pts[0], pts[1]);
+      double r = std::sqrt(d2);
+      for (int nudge = 0; nudge < 4 && r * r != d2; ++nudge) r = std::nextafter(r, r * r < d2 ? 2 * r : 0.0);
+      if (r * r != d2 || !(r > 0.5)) continue;
+      ++tied;
+      check_self<S, Dim>(pts, r);
+    }
+    CHECK(tied >= 20);
+  }
+
   SUBCASE("coincident particles are each other's neighbours") {
     auto pts = random_points<Dim>(200, 4.0, 3);
     pts.push_back(pts[10]);

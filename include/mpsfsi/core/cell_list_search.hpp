@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
+#include "mpsfsi/core/detail/candidate_run.hpp"
 #include "mpsfsi/core/detail/csr_builder.hpp"
 #include "mpsfsi/core/detail/format.hpp"
 #include "mpsfsi/core/error.hpp"
@@ -208,10 +209,7 @@ class CellListSearch {
         c1[k] = std::min<std::int64_t>(c + 1, dims_[k] - 1);
       }
       const Index self = exclude_self ? static_cast<Index>(i) : none;
-      const Scalar* sx = sorted_[0].data();
-      const Scalar* sy = sorted_[1].data();
-      const Scalar* sz = sorted_[Dim - 1].data();
-      const Scalar x0 = x[0], y0 = x[1], z0 = x[Dim - 1];
+      const Scalar* const coordinates[3] = {sorted_[0].data(), sorted_[1].data(), sorted_[Dim - 1].data()};
       // Rows along x are contiguous in the cell order: one run of sorted points per (y, z).
       const std::int64_t zlo = (Dim == 3) ? c0[2] : 0, zhi = (Dim == 3) ? c1[2] : 0;
       for (std::int64_t cz = zlo; cz <= zhi; ++cz) {
@@ -219,18 +217,8 @@ class CellListSearch {
           const std::int64_t row = (Dim == 3 ? cz * dims_[1] + cy : cy) * dims_[0];
           const Index kb = cell_start_[static_cast<std::size_t>(row + c0[0])];
           const Index ke = cell_start_[static_cast<std::size_t>(row + c1[0] + 1)];
-          sink.reserve(static_cast<std::size_t>(ke - kb));
-          for (Index k = kb; k < ke; ++k) {
-            // Same arithmetic as detail::squared_distance, so all searches agree at the radius.
-            const Scalar dx = sx[k] - x0, dy = sy[k] - y0;
-            Scalar d2 = dx * dx + dy * dy;
-            if constexpr (Dim == 3) {
-              const Scalar dz = sz[k] - z0;
-              d2 += dz * dz;
-            }
-            const Index j = order_[static_cast<std::size_t>(k)];
-            sink.put(j, d2, (d2 <= r2) & (j != self));
-          }
+          sink.reserve(static_cast<std::size_t>(ke - kb) + detail::candidate_run_slack);
+          detail::append_within<Dim, Scalar>(coordinates, order_.data(), kb, ke, x, r2, self, sink);
         }
       }
     });

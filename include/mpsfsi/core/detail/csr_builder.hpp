@@ -46,6 +46,12 @@ class CsrSink {
     len_ += accept ? 1 : 0;
   }
   std::size_t length() const { return len_; }
+  // The free slots, for writing several candidates at once (detail::append_within), and
+  // advancing past the `accepted` of them written to the front. squared_slots() is null when
+  // the distances are not kept.
+  Index* index_slots() { return idx_.data() + len_; }
+  Scalar* squared_slots() { return keep_ ? sq_.data() + len_ : nullptr; }
+  void advance(std::size_t accepted) { len_ += accepted; }
 
  private:
   std::vector<Index>& idx_;
