@@ -44,15 +44,21 @@ void filter_neighbors(const BasicNeighborList<Scalar>& in, Keep&& keep, BasicNei
   out.indices.resize(static_cast<std::size_t>(out.offsets[n]));
   const bool dist = in.has_distances();
   out.distances.resize(dist ? out.indices.size() : 0);
+  // Each entry is written to the next free slot, which advances only if the entry is kept: no
+  // branch on the test, which a cut by distance passes about one time in four (3D) to two
+  // (2D), too often for a branch predictor. Once the row is full the rest are all dropped, so
+  // nothing is written past it.
   MPSFSI_OMP(parallel for schedule(static))
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     Offset p = out.offsets[i];
-    for (Offset k = in.begin(i); k < in.end(i); ++k) {
-      if (!detail::keep_pair(keep, i, in.indices[k], k)) continue;
-      out.indices[p] = in.indices[k];
+    const Offset full = out.offsets[i + 1];
+    for (Offset k = in.begin(i); k < in.end(i) && p < full; ++k) {
+      const Index j = in.indices[k];
+      const bool kept = detail::keep_pair(keep, i, j, k);
+      out.indices[p] = j;
       if (dist) out.distances[p] = in.distances[k];
-      ++p;
+      p += kept ? 1 : 0;
     }
   }
 }
