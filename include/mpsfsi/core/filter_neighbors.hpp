@@ -45,9 +45,9 @@ void filter_neighbors(const BasicNeighborList<Scalar>& in, Keep&& keep, BasicNei
   const bool dist = in.has_distances();
   out.distances.resize(dist ? out.indices.size() : 0);
   // Each entry is written to the next free slot, which advances only if the entry is kept: no
-  // branch on the test, which a cut by distance passes about one time in four (3D) to two
-  // (2D), too often for a branch predictor. Once the row is full the rest are all dropped, so
-  // nothing is written past it.
+  // branch on the test, which the fluid step's cut by distance passes about 3 times in 10 (3D)
+  // to 4 (2D), too often for a branch predictor (docs/performance.md, short neighbour lists).
+  // Once the row is full the rest are all dropped, so nothing is written past it.
   MPSFSI_OMP(parallel for schedule(static))
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
