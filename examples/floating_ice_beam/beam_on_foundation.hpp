@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Floating ice as a beam on the water's Winkler foundation k = rho_w g: the ice of
 // scenes::FloatingIceBeam on springs under its bottom row, loaded at its end, against Hetenyi's
-// semi-infinite beam (docs/validation/fracture.md, "Ice on an elastic foundation"). Used by the
-// floating_ice_beam example and by tests/verification/ice_on_foundation.cpp.
+// semi-infinite beam (docs/validation/fracture.md, "Ice on an elastic foundation"). 2D, or in 3D a
+// strip across the scene's width (scenes::FloatingIceBeam::width) under a line load along its end.
+// Used by the floating_ice_beam example and by tests/verification/ice_on_foundation.cpp.
 #pragma once
 
 #include <algorithm>
@@ -29,7 +30,9 @@
 namespace floating_ice {
 
 using namespace mpsfsi;
-using IceSolver = ElasticSolver<2, BrittleSolidPolicies<2>>;
+template <int Dim>
+using IceSolverOf = ElasticSolver<Dim, BrittleSolidPolicies<Dim>>;
+using IceSolver = IceSolverOf<2>;
 
 // The lowest frequency of a beam on a Winkler foundation, sqrt(k / (rho_i h)) (1/s): the cut-off
 // of its flexural waves.
@@ -37,15 +40,19 @@ inline double omega0(const scenes::FloatingIceBeam& scene) {
   return std::sqrt(scene.foundation_modulus() / (scene.ice_density * scene.thickness));
 }
 
-// The ice beam of the scene, its bottom row on springs k l0 (the foundation k = rho_w g over the
-// row's share l0 of the bottom face), its end column loaded by P(t) downwards, no gravity (weight
+// The ice beam of the scene, its bottom row on springs k l0^(Dim-1) (the foundation k = rho_w g over
+// a particle's share of the bottom face: l0, or l0 x l0 in 3D), its end column loaded by P(t)
+// downwards (in 3D P times the strip's width, shared by the end column's particles), no gravity (weight
 // and buoyancy cancel at the draft; the springs carry the change of buoyancy). Mass damping at
 // the lowest frequency of a beam on a Winkler foundation, omega_0 = sqrt(k / (rho_i h)) (the
 // cut-off of its flexural waves), critically damps that mode and makes every other one decay at
 // omega_0 (mass damping c gives each underdamped mode the decay rate c / 2): the beam settles
 // within a few 1 / omega_0 of any change of load (61 ms at h = 40 mm).
+template <int Dim = 2>
 class BeamOnFoundation {
  public:
+  using solver_type = IceSolverOf<Dim>;
+
   // With `hydrostatic_limits` a spring's force stays between the column's weight downwards (its
   // bottom out of the water: lifted by more than the draft) and the buoyancy of its whole
   // thickness minus the weight (its top under water): Archimedes for an upright column.
@@ -57,6 +64,7 @@ class BeamOnFoundation {
       if (x[i][1] < yb + l0) bottom_.push_back(i);
       if (x[i][0] < l0) end_.push_back(i);
     }
+    if constexpr (Dim == 3) width_ = scene.width_for(l0);
     // The springs are a distributed traction on the bottom face, which the failure check reads on
     // the surface; the end column carries the end load, a concentrated one.
     for (const auto i : scene.wetted_bottom(x, l0)) solver_.mark_distributed_load(i);
@@ -81,18 +89,18 @@ class BeamOnFoundation {
   double foundation_force() const {
     double f = 0;
     for (const auto i : bottom_) f += spring(i);
-    return f;
+    return f / width_;
   }
 
-  IceSolver& solver() { return solver_; }
-  const IceSolver& solver() const { return solver_; }
+  solver_type& solver() { return solver_; }
+  const solver_type& solver() const { return solver_; }
   double l0() const { return l0_; }
 
  private:
-  static IceSolver make_solver(const scenes::FloatingIceBeam& scene, double l0, bool can_fail) {
+  static solver_type make_solver(const scenes::FloatingIceBeam& scene, double l0, bool can_fail) {
     std::vector<std::size_t> end_column;
-    auto set = scene.beam_particles(l0, end_column);
-    SolidParameters<2> p;
+    auto set = scene.beam_particles<Dim>(l0, end_column);
+    SolidParameters<Dim> p;
     p.l0 = l0;
     p.density = scene.ice_density;
     p.youngs_modulus = scene.youngs_modulus;
@@ -100,28 +108,29 @@ class BeamOnFoundation {
     p.plane_model = scene.plane_strain ? PlaneModel::plane_strain : PlaneModel::plane_stress;
     p.tensile_strength = can_fail ? scene.tensile_strength : 1e30;  // out of reach: nothing fails
     p.damping = 2 * omega0(scene);
-    return IceSolver(std::move(set), p);
+    return solver_type(std::move(set), p);
   }
 
-  // Upward spring force of a bottom particle: k l0 times its deflection.
+  // Upward spring force of a bottom particle: k l0^(Dim-1) times its deflection.
   double spring(std::size_t i) const {
     double w = solver_.reference_positions()[i][1] - solver_.particles().positions()[i][1];
     if (limits_) w = std::clamp(w, -scene_.draft(), scene_.thickness - scene_.draft());
-    return scene_.foundation_modulus() * l0_ * w;
+    return scene_.foundation_modulus() * std::pow(l0_, Dim - 1) * w;
   }
 
   void apply(double P) {
     auto& f = solver_.external_force();
     for (auto& fi : f) fi.setZero();
     for (const auto i : bottom_) f[i][1] += spring(i);
-    for (const auto i : end_) f[i][1] -= P / static_cast<double>(end_.size());
+    for (const auto i : end_) f[i][1] -= P * width_ / static_cast<double>(end_.size());
   }
 
   scenes::FloatingIceBeam scene_;
   double l0_;
-  IceSolver solver_;
+  solver_type solver_;
   std::vector<std::size_t> bottom_, end_;
   bool limits_ = false;
+  double width_ = 1;  // the strip's width in 3D (loads are per unit width); 1 in 2D
 };
 
 // The settled deflection against Hetenyi's: the end column's error, the RMS over
@@ -135,7 +144,8 @@ struct DeflectionCheck {
   double moment_error = 0;   // the moment at pi / (4 lambda) (FloatingIceBeam::column_moment) / Hetenyi's - 1
 };
 
-inline DeflectionCheck check_deflection(BeamOnFoundation& beam, const scenes::FloatingIceBeam& scene, double P) {
+template <int Dim>
+DeflectionCheck check_deflection(BeamOnFoundation<Dim>& beam, const scenes::FloatingIceBeam& scene, double P) {
   DeflectionCheck r;
   r.load = P;
   r.w = beam.deflection();
@@ -153,7 +163,7 @@ inline DeflectionCheck check_deflection(BeamOnFoundation& beam, const scenes::Fl
 
 // What a run to the first break leaves: the first failure, the load then and the pieces.
 struct BreakResult {
-  Vec<2> first_failure = Vec<2>::Zero();  // reference position of the first failed particle
+  Vec<2> first_failure = Vec<2>::Zero();  // reference x and y of the first failed particle (in 3D, z left out)
   double first_failure_time = -1;
   Vec<2> load_at_failure = Vec<2>::Zero();  // the load on the ice then (N/m)
   std::size_t pieces = 0;                   // fragments of more than 10 particles
@@ -164,14 +174,15 @@ struct BreakResult {
   double wall_seconds = 0;
 };
 
-inline BreakResult read_break(const IceSolver& s, std::chrono::steady_clock::time_point wall) {
+template <int Dim>
+BreakResult read_break(const IceSolverOf<Dim>& s, std::chrono::steady_clock::time_point wall) {
   BreakResult r;
   r.particles = s.particles().size();
   r.failures = s.failure_events();
   r.cut_bonds = s.cut_bonds();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
   if (r.failures == 0) return r;
-  r.first_failure = s.reference_positions()[s.failure_log().front().particle];
+  r.first_failure = s.reference_positions()[s.failure_log().front().particle].template head<2>();
   r.first_failure_time = s.first_failure_time();
   const auto fragments = find_fragments(s.bonds());
   r.pieces = fragments.count_larger_than(10);
@@ -186,12 +197,23 @@ inline BreakResult read_break(const IceSolver& s, std::chrono::steady_clock::tim
   return r;
 }
 
-// Every particle failure of `s`, with its reference position, as `folder/failures.csv`.
-inline void write_failures(const std::string& folder, const IceSolver& s) {
-  CsvWriter failures(folder + "/failures.csv", {"t", "particle", "x0", "y0", "sigma_1", "normal_x", "normal_y"});
+// Every particle failure of `s`, with its reference position, as `folder/failures.csv` (z0 and
+// normal_z in 3D).
+template <int Dim>
+void write_failures(const std::string& folder, const IceSolverOf<Dim>& s) {
+  std::vector<std::string> columns{"t", "particle", "x0", "y0", "sigma_1", "normal_x", "normal_y"};
+  if constexpr (Dim == 3) {
+    columns.insert(columns.begin() + 4, "z0");
+    columns.push_back("normal_z");
+  }
+  CsvWriter failures(folder + "/failures.csv", columns);
   for (const auto& e : s.failure_log()) {
-    const Vec<2> X = s.reference_positions()[e.particle];
-    failures.row({e.time, static_cast<double>(e.particle), X[0], X[1], e.sigma1, e.normal[0], e.normal[1]});
+    const Vec<Dim> X = s.reference_positions()[e.particle];
+    if constexpr (Dim == 3)
+      failures.row({e.time, static_cast<double>(e.particle), X[0], X[1], X[2], e.sigma1, e.normal[0], e.normal[1],
+                    e.normal[2]});
+    else
+      failures.row({e.time, static_cast<double>(e.particle), X[0], X[1], e.sigma1, e.normal[0], e.normal[1]});
   }
 }
 
@@ -201,11 +223,13 @@ inline void write_failures(const std::string& folder, const IceSolver& s) {
 //     the profile is compared with Hetenyi's.
 //  2. Break (with fracture): P rises at the same rate to 0.9 P_f, is held for 0.3 s and then rises
 //     by 0.2 P_f per second, so that the settling lag 2 / omega_0 = 0.12 s of the critically
-//     damped mode costs 2.4 % of P_f; the run stops 0.1 s after the first failure, or at 4 s.
+//     damped mode costs 2.4 % of P_f; the run stops 0.1 s (RunOptions::after_failure) after the
+//     first failure, or at 4 s.
 // The times are for h = 40 mm; for another thickness they scale with 1 / omega_0.
 struct RunOptions {
   int rows = 8;          // particles through the thickness, h / l0
   bool fracture = true;  // phase 2
+  double after_failure = 0.1;  // how long phase 2 goes on after the first failure (s at h = 40 mm)
   std::string out;       // output folder; empty: no files
   bool progress = false;
 };
@@ -241,7 +265,9 @@ class ExampleLoad {
   double Pf_, s_;
 };
 
-inline RunResult run(const scenes::FloatingIceBeam& scene, const RunOptions& o) {
+// The example's run on springs: 2D, or the 3D strip of the scene's width (Dim = 3).
+template <int Dim = 2>
+RunResult run(const scenes::FloatingIceBeam& scene, const RunOptions& o) {
   RunResult r;
   r.l0 = scene.thickness / o.rows;
   r.lambda = scene.lambda();
@@ -249,7 +275,7 @@ inline RunResult run(const scenes::FloatingIceBeam& scene, const RunOptions& o) 
   r.omega0 = omega0(scene);
   const double time_scale = omega0(scenes::FloatingIceBeam{}) / r.omega0;  // 1 at h = 40 mm
   const ExampleLoad load(r.failure_load, time_scale);
-  BeamOnFoundation beam(scene, r.l0, o.fracture);
+  BeamOnFoundation<Dim> beam(scene, r.l0, o.fracture);
   auto& s = beam.solver();
   r.particles = s.particles().size();
   const auto wall = std::chrono::steady_clock::now();
@@ -284,13 +310,14 @@ inline RunResult run(const scenes::FloatingIceBeam& scene, const RunOptions& o) 
         history->row({s.time(), P, beam.deflection()[0], scene.deflection(P, beam.column_x(0)), beam.foundation_force(),
                       static_cast<double>(s.failure_events()), static_cast<double>(s.cut_bonds())});
       // Snapshots every 0.05 time units, every 2 ms of the 0.1 s after the first failure.
-      const bool fracturing = s.first_failure_time() >= 0 && s.time() < s.first_failure_time() + 0.1 * time_scale;
+      const double failed_for = s.first_failure_time() >= 0 ? s.time() - s.first_failure_time() : -1;
+      const bool fracturing = failed_for >= 0 && failed_for < 0.1 * time_scale;
       if (s.time() >= next_snapshot - 1e-12 || (fracturing && next_snapshot > s.time() + 0.002)) {
         snapshot();
         next_snapshot = s.time() + (fracturing ? 0.002 : 0.05 * time_scale);
       }
       if (progress) progress->update(s.step_count(), std::min(s.time(), horizon));
-      if (s.first_failure_time() >= 0 && s.time() > s.first_failure_time() + 0.1 * time_scale) return;
+      if (failed_for > o.after_failure * time_scale) return;
     }
   };
 

@@ -8,7 +8,8 @@
 //    fracture the load rises past P_f until the beam breaks, and the profile is compared at
 //    0.9 P_f; without, P_f / 2 is held to 30 s and compared then.
 //  --foundation springs: the same ice on springs under its bottom row, the water not simulated
-//    (h = 40 mm, 917 kg/m3; docs/validation/fracture.md, "Ice on an elastic foundation").
+//    (h = 40 mm, 917 kg/m3; docs/validation/fracture.md, "Ice on an elastic foundation"); with
+//    --dim 3 a strip of --width (3 h by default) under a line load along its end.
 // Writes the deflection profile against Hetenyi's, the load history, every particle failure and
 // VTU/PVD snapshots (with water: of the ice and the water); plot.py renders the PNGs.
 // `floating_ice_beam --help` lists the options.
@@ -27,9 +28,12 @@ struct Options {
   std::string foundation = "water";
   double thickness = 0;  // 0: the foundation's own (0.08 m with water, 0.04 m on springs)
   int rows = 8;
+  int dim = 2;
+  double width = 0;  // 3D: the strip's width; 0: 3 h
   double ice_density = 0;  // 0: the foundation's own (875 kg/m3 with water, 917 kg/m3 on springs)
   std::string fracture = "on";
   double end_time = 0;  // water only; 0: the protocol's end
+  double after_failure = 0.1;  // springs only
   std::string out = "out/floating_ice_beam";
   bool no_output = false;
 };
@@ -50,10 +54,11 @@ Outcome run_on_springs(const mpsfsi::scenes::FloatingIceBeam& scene, const Optio
   floating_ice::RunOptions run;
   run.rows = o.rows;
   run.fracture = o.fracture == "on";
+  run.after_failure = o.after_failure;
   run.out = o.no_output ? std::string() : o.out;
   run.progress = true;
   std::fprintf(stderr, "%s\n", mpsfsi::ProgressReporter::legend());
-  const auto r = floating_ice::run(scene, run);
+  const auto r = o.dim == 3 ? floating_ice::run<3>(scene, run) : floating_ice::run<2>(scene, run);
   Outcome c;
   c.deflection = r.deflection;
   c.brk = r.brk;
@@ -114,9 +119,14 @@ int main(int argc, char** argv) try {
   cli.add("--ice-density", o.ice_density, "ice density; 0: 875 with water (its draft whole rows at 8 rows), 917 on springs",
           "kg/m3");
   cli.add("--rows", o.rows, "particles through the thickness (h / l0), at least 2");
+  cli.add("--dim", o.dim, "2, or 3 for a strip (on springs only)")->check(mpsfsi_examples::one_of({"2", "3"}));
+  cli.add("--width", o.width, "with --dim 3: the strip's width, rounded to whole spacings; 0: 3 h", "m");
   cli.add("--fracture", o.fracture, "raise the load past P_f until the beam breaks")
       ->check(mpsfsi_examples::one_of({"on", "off"}));
   cli.add("--end-time", o.end_time, "with water: stop at this simulated time; 0: the protocol's end", "s");
+  cli.add("--after-failure", o.after_failure,
+          "on springs: how long the load goes on rising after the first failure, for the default ice (the "
+          "protocol's times scale with sqrt(rho_i h))", "s");
   cli.add("--out", o.out, "output folder");
   cli.flag("--no-output", o.no_output, "write no files");
   if (const auto code = cli.parse_or_exit_code(argc, argv)) return *code;
@@ -137,19 +147,30 @@ int main(int argc, char** argv) try {
   if (o.rows < 2) return usage_error("--rows: must be at least 2", o.rows);
   if (o.end_time < 0) return usage_error("--end-time: must be positive, or 0 for the protocol's end", o.end_time);
   if (o.end_time > 0 && !water) return usage_error("--end-time: only with --foundation water", o.end_time);
+  if (o.dim == 3 && water)
+    return usage_error("--dim: the 3D strip runs on springs only (--foundation springs)", o.dim);
+  if (o.width < 0) return usage_error("--width: must be positive, or 0 for 3 h", o.width);
+  if (!(o.after_failure > 0)) return usage_error("--after-failure: must be positive", o.after_failure);
+  if (o.after_failure != 0.1 && water)
+    return usage_error("--after-failure: only with --foundation springs", o.after_failure);
+  if (o.width > 0 && o.dim != 3) return usage_error("--width: only with --dim 3", o.width);
   if (cli.print_case_if_requested()) return 0;
   mpsfsi::scenes::FloatingIceBeam scene = water ? floating_ice::water_scene() : mpsfsi::scenes::FloatingIceBeam{};
   scene.thickness = o.thickness;
   if (o.ice_density > 0) scene.ice_density = o.ice_density;
+  if (o.dim == 3) scene.width = o.width > 0 ? o.width : 3 * o.thickness;
   if (!o.no_output) {
     mpsfsi_examples::make_output_folder(o.out);
     cli.write_case(o.out);
   }
   const double l0 = o.thickness / o.rows;
-  std::printf("Floating ice beam %s: h = %g m, l0 = %g m (%d rows), beam %g m, %g kg/m3, E = %g MPa, sigma_f = %g "
-              "kPa\n",
-              water ? "in water" : "on a Winkler foundation", scene.thickness, l0, o.rows, scene.beam_length_for(l0),
-              scene.ice_density, scene.youngs_modulus / 1e6, scene.tensile_strength / 1e3);
+  std::printf("Floating ice %s %s: h = %g m, l0 = %g m (%d rows), beam %g m, %g kg/m3, E = %g MPa, sigma_f = %g "
+              "kPa",
+              o.dim == 3 ? "strip (3D)" : "beam", water ? "in water" : "on a Winkler foundation", scene.thickness, l0,
+              o.rows, scene.beam_length_for(l0), scene.ice_density, scene.youngs_modulus / 1e6,
+              scene.tensile_strength / 1e3);
+  if (o.dim == 3) std::printf(", width %g m (loads per unit width)", scene.width_for(l0));
+  std::printf("\n");
   std::printf("Hetenyi: 1/lambda = %.4f m, pi/(4 lambda) = %.4f m, P_f = %.3f N/m\n", 1 / scene.lambda(),
               scene.largest_moment_position(), scene.failure_load());
   const auto r = water ? run_in_water(scene, o) : run_on_springs(scene, o);

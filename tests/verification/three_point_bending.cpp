@@ -196,10 +196,10 @@ TEST_CASE("three-point bending: case 02 in 3D at l0 = h/8 breaks the same way" *
 
 }
 
-// Runs of about 40 minutes on 2 cores: their own CTest entry, labelled "validation" and "long".
+// A run of about 10 minutes on 2 cores: its own CTest entry, labelled "validation" and "long".
 TEST_SUITE("long.fracture") {
 
-// The clean break in 3D at the 2D study's l0 = 2 mm (19 layers, about 24 minutes on 2 cores).
+// The clean break in 3D at the 2D study's l0 = 2 mm (19 layers, about 10 minutes on 2 cores).
 // Measured: two pieces, every one of the 779 rows along x crosses the fracture surface once, all
 // within 1.5 l0 of the centre line; flexural strain -0.56 % from Table 1, energy rise +0.00 %
 // (docs/validation/fracture.md).
