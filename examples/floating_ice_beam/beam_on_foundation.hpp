@@ -168,6 +168,7 @@ struct BreakResult {
   Vec<2> load_at_failure = Vec<2>::Zero();  // the load on the ice then (N/m)
   std::size_t pieces = 0;                   // fragments of more than 10 particles
   std::size_t small_fragment_particles = 0;  // particles in fragments of 10 or fewer
+  std::size_t beside_two_largest = 0;        // particles in neither of the two largest fragments
   double far_piece_start = 0;  // the smallest reference x of the largest piece (the far sheet)
   std::size_t failures = 0, cut_bonds = 0;
   std::size_t particles = 0;
@@ -188,6 +189,10 @@ BreakResult read_break(const IceSolverOf<Dim>& s, std::chrono::steady_clock::tim
   r.pieces = fragments.count_larger_than(10);
   const auto largest = static_cast<std::size_t>(
       std::max_element(fragments.sizes.begin(), fragments.sizes.end()) - fragments.sizes.begin());
+  std::size_t second = 0;  // the size of the second largest fragment
+  for (std::size_t f = 0; f < fragments.sizes.size(); ++f)
+    if (f != largest) second = std::max(second, fragments.sizes[f]);
+  r.beside_two_largest = r.particles - fragments.sizes[largest] - second;
   r.far_piece_start = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < fragments.label.size(); ++i) {
     const auto f = static_cast<std::size_t>(fragments.label[i]);

@@ -203,10 +203,10 @@ int main(int argc, char** argv) try {
       const bool top = scene.beam_bottom(l0) + scene.thickness - b.first_failure[1] < l0;
       std::printf("break: first failure at t = %.4f s, x = %.4f m (%+.1f %% from pi/(4 lambda)), %s fibre, P = %.3f N/m "
                   "(%+.1f %% of P_f); %zu failures, %zu bonds cut; %zu pieces of more than 10 particles, %zu particles "
-                  "in smaller ones\n",
+                  "in smaller ones, %zu outside the two largest\n",
                   b.first_failure_time, b.first_failure[0], 100 * (b.first_failure[0] / x_f - 1), top ? "top" : "inner",
                   -b.load_at_failure[1], 100 * (-b.load_at_failure[1] / Pf - 1), b.failures, b.cut_bonds, b.pieces,
-                  b.small_fragment_particles);
+                  b.small_fragment_particles, b.beside_two_largest);
       if (b.pieces >= 2)
         std::printf("break: the far piece from x = %.4f m (%+.1f %% from pi/(4 lambda))\n", b.far_piece_start,
                     100 * (b.far_piece_start / x_f - 1));

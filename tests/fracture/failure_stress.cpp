@@ -92,7 +92,7 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a cut-out neighbour weighs the part
   FailureStressReadout<Dim> readout;
   const auto read_at_i = [&] { return readout.read(point, x, x, bonds, nullptr, unloaded, settings)[i](0, 0); };
   CHECK(read_at_i() == doctest::Approx((1e6 * self + 3e6 * w_k) / (self + all)).epsilon(1e-12));
-  readout.mark_cut_out(k, x.size());
+  readout.mark_cut_out(k, x.size(), Vec<Dim>::UnitX());
   CHECK(read_at_i() == doctest::Approx(1e6 * (self + w_k) / (self + all)).epsilon(1e-12));
 }
 
@@ -212,10 +212,127 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a surface particle reads the end of
   const MatArray<Dim, double> loaded_read =
       beside_load.read(point, x, reference, bonds, &fit, mouth_loaded, settings, larger);
   CHECK(std::memcmp(loaded_read[beside].data(), outer_read[beside].data(), sizeof(double) * Dim * Dim) == 0);
-  chosen.mark_cut_out(mouth, n);
+  chosen.mark_cut_out(mouth, n, Vec<Dim>::UnitX());
   const MatArray<Dim, double> after_cut = chosen.read(point, x, reference, bonds, &fit, unloaded, settings, larger);
   CHECK(std::memcmp(after_cut[beside].data(), outer_read[beside].data(), sizeof(double) * Dim * Dim) == 0);
   CHECK((after_cut[beside] - chosen_read[beside]).norm() > 0);
+}
+
+// Along a whole face a surface particle's samples are averaged twice (a filter over about +-4 l0);
+// on the plane of a crack that crosses the face and has cut out a bonded neighbour (in its slab),
+// once, as the interior is: the second pass would spread the crack's own concentration over the
+// relaxed face beside it. A bar bent more towards one end is read at the outer ends of its cells
+// with averaging; then a top particle (the mouth) is cut out. In 3D, with the crack across the
+// bar (normal x), the mouth's neighbour across the width lies in its slab and reads exactly one
+// pass over its face: its own sample with the weights of itself and of the mouth, and its other
+// bonded top-face neighbours' samples with their bond weights. The top particle beside the mouth
+// across the crack plane reads otherwise (two passes). A crack 11 degrees from the face (normal
+// (0.2, 1)) has the neighbours along the face in its slab, but does not cross the face: they
+// read two passes, in 2D and 3D. So in 2D, where a crack meets the face at one particle, no face
+// particle reads one pass. A top particle farther than two bond radii from the mouth reads as
+// before the cut, to the bit.
+TEST_CASE_TEMPLATE("fracture.failure_stress: a face particle on the plane of a crack across its face is averaged once", T,
+                   std::integral_constant<int, 2>, std::integral_constant<int, 3>) {
+  constexpr int Dim = T::value;
+  const double l0 = 0.01, re = 2.1 * l0, k = 0.03;
+  Vec<Dim> upper = Vec<Dim>::Constant(0.06);
+  upper[0] = 0.2;
+  if (Dim == 3) upper[Dim - 1] = 0.1;  // the particles read and their face neighbours 2 l0 or more inside the sides
+  const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
+  const auto& reference = block.positions();
+  const std::size_t n = reference.size();
+  BondList<Dim> bonds;
+  bonds.template build<KoshizukaWeight>(reference, std::vector<std::int32_t>(n, 0), re);
+  double lowest = reference[0][1], highest = reference[0][1];
+  for (const auto& p : reference) lowest = std::min(lowest, p[1]), highest = std::max(highest, p[1]);
+  const double middle = 0.5 * (lowest + highest);
+  VecArray<Dim, double> x = reference;
+  // Bent, more towards the bar's far end: a strain quadratic along the face, whose averages
+  // along it move with each pass.
+  for (auto& p : x) p[0] -= k * p[0] * (p[1] - middle) * (p[0] / 0.1) * (p[0] / 0.1);
+  DeformationFit<Dim, double> fit;
+  fit.build(bonds, l0);
+  typename FailureStressReadout<Dim>::Settings settings;
+  settings.l0 = l0;
+  settings.lame = {6e8, 4e8};
+  settings.self_weight = KoshizukaWeight::value(l0, re);
+  for (std::size_t p = 0; p < n; ++p) {
+    double sum = 0;
+    for (Offset b = bonds.begin(p); b < bonds.end(p); ++b) sum += bonds.weight(b);
+    settings.n0 = std::max(settings.n0, sum);
+  }
+  const MatArray<Dim, double> point(n, Mat<Dim>::Zero());
+  const auto unloaded = [](std::size_t) { return false; };
+  FailureStressReadout<Dim> readout, samples_only;
+  const MatArray<Dim, double> before = readout.read(point, x, reference, bonds, &fit, unloaded, settings);
+  typename FailureStressReadout<Dim>::Settings unaveraged = settings;
+  unaveraged.average = false;
+  const MatArray<Dim, double> sample = samples_only.read(point, x, reference, bonds, &fit, unloaded, unaveraged);
+
+  // The top particle at reference X, or n.
+  const auto top_at = [&](const Vec<Dim>& X) {
+    for (std::size_t p = 0; p < n; ++p)
+      if (reference[p][1] == highest && (reference[p] - X).norm() < 0.1 * l0) return p;
+    return n;
+  };
+  Vec<Dim> mouth_at = Vec<Dim>::Constant(0.055);
+  mouth_at[0] = 0.105;
+  mouth_at[1] = highest;
+  Vec<Dim> along_face = Vec<Dim>::Zero(), across = Vec<Dim>::Zero(), flat = Vec<Dim>::Zero();
+  along_face[Dim == 3 ? 2 : 0] = l0;  // across the width in 3D, along the bar in 2D
+  across[0] = -l0;
+  flat[0] = 0.2;  // a crack 11 degrees from the face
+  flat[1] = 1;
+  flat.normalize();
+  Vec<Dim> far_at = mouth_at;
+  far_at[0] = 0.165;
+  const std::size_t mouth = top_at(mouth_at), ahead = top_at(mouth_at + along_face), far = top_at(far_at);
+  const std::size_t beside = top_at(mouth_at + across);
+  REQUIRE(mouth < n);
+  REQUIRE(ahead < n);
+  REQUIRE(far < n);
+  REQUIRE(beside < n);
+  REQUIRE((reference[far] - reference[mouth]).norm() > 2 * re);
+
+  // One pass along the face for particle i, the mouth cut out.
+  const auto one_pass = [&](std::size_t i) {
+    double own = settings.self_weight, weight = 0;
+    Mat<Dim> sum = Mat<Dim>::Zero();
+    for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
+      const auto m = static_cast<std::size_t>(bonds.neighbor(b));
+      if (reference[m][1] != highest) continue;  // not on its face
+      if (m == mouth) {
+        own += bonds.weight(b);
+        continue;
+      }
+      sum += bonds.weight(b) * sample[m];
+      weight += bonds.weight(b);
+    }
+    return Mat<Dim>((sum + own * sample[i]) / (weight + own));
+  };
+  const auto reads_one_pass = [&](const MatArray<Dim, double>& read, std::size_t i) {
+    const Mat<Dim> once = one_pass(i);
+    return (read[i] - once).norm() < 1e-12 * once.norm();
+  };
+  const auto read_after_cut = [&](const Vec<Dim>& normal) {
+    FailureStressReadout<Dim> cut;
+    cut.read(point, x, reference, bonds, &fit, unloaded, settings);  // the first read fixes the faces
+    cut.mark_cut_out(mouth, n, normal);
+    return cut.read(point, x, reference, bonds, &fit, unloaded, settings);
+  };
+  CHECK_FALSE(reads_one_pass(before, ahead));
+  CHECK_FALSE(reads_one_pass(before, beside));
+
+  const MatArray<Dim, double> crossing = read_after_cut(Vec<Dim>::UnitX());
+  if (Dim == 3) CHECK(reads_one_pass(crossing, ahead));
+  CHECK_FALSE(reads_one_pass(crossing, beside));  // across the crack plane
+  CHECK(std::memcmp(crossing[far].data(), before[far].data(), sizeof(double) * Dim * Dim) == 0);
+
+  const MatArray<Dim, double> along = read_after_cut(flat);
+  CHECK(std::abs(across.dot(flat)) < 0.5 * l0);  // beside is in the slab, yet the crack does not cross the face
+  CHECK_FALSE(reads_one_pass(along, beside));
+  CHECK_FALSE(reads_one_pass(along, ahead));
+  CHECK(std::memcmp(along[far].data(), before[far].data(), sizeof(double) * Dim * Dim) == 0);
 }
 
 // The screened read averages only where the highest bound over a particle's neighbourhood reaches

@@ -17,7 +17,8 @@ inline void report(const char* what, const floating_ice::BreakResult& r, double 
                             << "), y = " << r.first_failure[1] << " m; load then (" << r.load_at_failure[0] << ", "
                             << r.load_at_failure[1] << ") N/m; " << r.failures << " failures, " << r.cut_bonds
                             << " bonds cut, " << r.pieces << " pieces of more than 10 particles, "
-                            << r.small_fragment_particles << " particles in smaller ones, the largest piece from x = "
+                            << r.small_fragment_particles << " particles in smaller ones, " << r.beside_two_largest
+                            << " outside the two largest, the largest piece from x = "
                             << r.far_piece_start << " m; " << r.wall_seconds << " s");
 }
 

@@ -52,13 +52,21 @@ inline namespace MPSFSI_ABI {
 //   degrees, each read at its own surface point), so the read-out does not move inwards; and
 //   twice (a filter over +-4 l0 on a flat face): with one pass, the grid-scale release wave of
 //   the first cut started second cracks 3-4 l0 beside the first in three of the five bending
-//   cases. Crack faces are not read outside: at a crack tip the field is singular, and a fit
-//   extrapolated into the crack reads noise (it branched the crack of the bending study at
-//   mid-height). Nor are loaded particles (`loaded(i)`; ElasticSolver: in contact, or having
-//   carried an external force such as the FSI load at any step so far, unless the solver was
-//   told that it is a distributed traction, mark_distributed_load): a fit extrapolated to a
-//   face under point loads reads their spikes (it cracked the top beside the indenter), and the
-//   spikes stay in the field after the load is gone. A droplet's impact loads the ice beam's top
+//   cases. Once, as the interior is, where it lies in the slab of a cut-out bonded neighbour
+//   (|(x_i - x_k) . n_k| < l0/2, crack_plane.hpp) whose crack crosses the face (|n_i . n_k| <
+//   1/2): on that crack's plane, ahead of it along the face. A crack crossing a 3D face has such
+//   particles at the ends of its front, where the field has the crack's own concentration, one
+//   spacing wide; the second pass spreads it over the relaxed face beside the crack, and the
+//   front then steps from column to column instead of running along its plane. (In 2D a crack
+//   meets its face at one particle: a face neighbour lies in its slab only where the crack runs
+//   within 30 degrees of the face, and then it does not cross it.) Crack faces are
+//   not read outside: at a crack tip the field is singular, and a fit extrapolated into the
+//   crack reads noise (it branched the crack of the bending study at mid-height). Nor are
+//   loaded particles (`loaded(i)`; ElasticSolver: in contact, or having carried an external
+//   force such as the FSI load at any step so far, unless the solver was told that it is a
+//   distributed traction, mark_distributed_load): a fit extrapolated to a face under point loads
+//   reads their spikes (it cracked the top beside the indenter), and the spikes stay in the field
+//   after the load is gone. A droplet's impact loads the ice beam's top
 //   for one fluid step and then leaves it at zero pressure: read outside from then on, that face
 //   fails one solid step later and the failures run along the whole beam (docs/validation/fsi.md).
 //   The read-out is meant for faces that stay traction-free or carry a traction smooth along
@@ -246,13 +254,16 @@ class FailureStressReadout {
     a.array(initial_weight_);
     a.array(on_surface_);
     cut_out_.clear();  // FractureProcess marks them again from its record
+    cut_out_normal_.clear();
     pending_ = false;
   }
 
-  // Particle i has been cut out (see above); n: the particle count.
-  void mark_cut_out(std::size_t i, std::size_t n) {
+  // Particle i has been cut out (see above) with the crack normal `normal`; n: the particle count.
+  void mark_cut_out(std::size_t i, std::size_t n, const Vec<Dim, double>& normal) {
     cut_out_.resize(n, 0);
+    cut_out_normal_.resize(n, Vec<Dim, double>::Zero());
     cut_out_[i] = 1;
+    cut_out_normal_[i] = normal;
   }
   std::size_t cut_out_marks() const { return cut_out_.size(); }
 
@@ -271,6 +282,9 @@ class FailureStressReadout {
   // whose samples lie on the side faces).
   static constexpr double kSurfaceThreshold = 0.1;
   static constexpr double kSameFace = 0.9;
+  // A crack crosses a face where its plane is within 30 degrees of the face's normal: |n_i . n| <
+  // sin 30 degrees, as the slab's half-width l0/2 is 30 degrees at one spacing (crack_plane.hpp).
+  static constexpr double kCrossesFace = 0.5;
   // read_screened() follows the samples that reach the floor through the bonds while they are at
   // most 1/16 of the particles (a loading phase has few or none): the bonds of their
   // neighbourhoods are read a few times, against three passes over all bonds.
@@ -330,6 +344,24 @@ class FailureStressReadout {
       for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
         const auto i = static_cast<std::size_t>(ii);
         read_outside_[i] = on_surface_[i] && !loaded(i) ? 1 : 0;
+      }
+      // A particle in the slab of a cut-out bonded neighbour whose crack crosses its face lies on
+      // that crack's plane, ahead of it along the face (see above).
+      crack_ahead_.assign(n, 0);
+      if (!cut_out_.empty()) {
+        MPSFSI_OMP(parallel for schedule(static))
+        for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+          const auto i = static_cast<std::size_t>(ii);
+          if (!read_outside_[i]) continue;
+          for (Offset b = bonds.begin(i); b < bonds.end(i); ++b) {
+            const auto k = static_cast<std::size_t>(bonds.neighbor(b));
+            if (cut_out_[k] != 0 && std::abs(normal_[i].dot(cut_out_normal_[k])) < kCrossesFace &&
+                std::abs((x[i] - x[k]).dot(cut_out_normal_[k])) < 0.5 * s.l0) {
+              crack_ahead_[i] = 1;
+              break;
+            }
+          }
+        }
       }
       MPSFSI_OMP(parallel for schedule(static))
       for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
@@ -490,7 +522,7 @@ class FailureStressReadout {
       if (only && ((*only)[i] != 0) == rest) continue;
       const bool along_face = at_surface_ && read_outside_[i] != 0;
       if (faces_only && !along_face) continue;
-      if (surface_only && !along_face) {
+      if (surface_only && (!along_face || crack_ahead_[i])) {
         out[i] = in[i];
         continue;
       }
@@ -526,6 +558,8 @@ class FailureStressReadout {
   MatArray<Dim, double> inner_stress_, averaged_inner_, smoothed_inner_;
   std::vector<std::uint8_t> two_ended_;  // read outside with both ends, the end chosen after the averaging (or empty)
   std::vector<std::uint8_t> cut_out_;  // empty until the first CrackSide::slab failure
+  VecArray<Dim, double> cut_out_normal_;  // their crack normals
+  std::vector<std::uint8_t> crack_ahead_;  // read outside, in the slab of a cut-out neighbour (sample())
   // The settings of the last read (complete() averages with them again).
   double self_weight_ = 0;
   bool at_surface_ = false;

@@ -114,7 +114,7 @@ class FractureProcess {
     const auto loaded = [&](std::size_t i) { return touching(i) || carried_external_[i] == kPointLoad; };
     const bool slab = s.crack_side == CrackSide::slab;
     if (slab && readout_.cut_out_marks() != n)  // after a checkpoint was read: from the record
-      for (const auto& e : log_) readout_.mark_cut_out(e.particle, n);
+      for (const auto& e : log_) readout_.mark_cut_out(e.particle, n, e.normal);
     failing_.clear();
     const auto& strength = s.set.field(strength_);
     auto& read = s.set.field(failure_stress_);
@@ -187,7 +187,7 @@ class FractureProcess {
       const std::size_t cut_here = cut_bonds_across_plane(s.bonds, x, f.particle, f.normal, s.crack_half_width, s.re,
                                                           touched, scratch, slab ? 0.5 * s.readout.l0 : 0.0);
       if (cut_here == 0) continue;  // no intact bond across its plane: nothing breaks, nothing logged
-      if (slab) readout_.mark_cut_out(f.particle, n);
+      if (slab) readout_.mark_cut_out(f.particle, n, f.normal);
       cut += cut_here;
       log_.push_back({s.time, f.particle, f.sigma1, f.normal});
       if (first_failure_time_ < 0) first_failure_time_ = s.time;
