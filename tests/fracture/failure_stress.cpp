@@ -17,6 +17,33 @@ using namespace mpsfsi;
 
 TEST_SUITE("fracture") {
 
+// A full neighbourhood's weight: the largest sum of bond weights over the particles (n0).
+template <int Dim>
+double full_neighbourhood_weight(const BondList<Dim>& bonds, std::size_t n) {
+  double n0 = 0;
+  for (std::size_t p = 0; p < n; ++p) {
+    double sum = 0;
+    for (Offset b = bonds.begin(p); b < bonds.end(p); ++b) sum += bonds.weight(b);
+    n0 = std::max(n0, sum);
+  }
+  return n0;
+}
+
+// A bar of particles at spacing l0 from the origin to `upper`, bonded within re, and the heights
+// of its bottom and top rows.
+template <int Dim>
+struct BondedBar {
+  BondedBar(const Vec<Dim>& upper, double l0, double re)
+      : reference(scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0).positions()) {
+    bonds.template build<KoshizukaWeight>(reference, std::vector<std::int32_t>(reference.size(), 0), re);
+    lowest = highest = reference[0][1];
+    for (const auto& p : reference) lowest = std::min(lowest, p[1]), highest = std::max(highest, p[1]);
+  }
+  VecArray<Dim, double> reference;
+  BondList<Dim> bonds;
+  double lowest = 0, highest = 0;
+};
+
 // The averaged failure stress (no surface read-out here, so every particle averages over all its
 // bonds). One particle i in the middle of a block carries a stress, the others none, so the
 // average at i is its own share: w_self / (w_self + sum of its intact weights). Bonds cut after
@@ -109,14 +136,11 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a surface particle reads the end of
   const double l0 = 0.01, re = 2.1 * l0, k = 0.03;
   Vec<Dim> upper = Vec<Dim>::Constant(0.06);
   upper[0] = 0.2;
-  const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
-  const auto& reference = block.positions();
+  BondedBar<Dim> bar(upper, l0, re);
+  const auto& reference = bar.reference;
+  auto& bonds = bar.bonds;
   const std::size_t n = reference.size();
-  BondList<Dim> bonds;
-  bonds.template build<KoshizukaWeight>(reference, std::vector<std::int32_t>(n, 0), re);
-  double lowest = reference[0][1], highest = reference[0][1];
-  for (const auto& p : reference) lowest = std::min(lowest, p[1]), highest = std::max(highest, p[1]);
-  const double middle = 0.5 * (lowest + highest);
+  const double lowest = bar.lowest, highest = bar.highest, middle = 0.5 * (lowest + highest);
   VecArray<Dim, double> x = reference;
   for (auto& p : x) p[0] -= k * p[0] * (p[1] - middle);
   const auto gradient = [&](const Vec<Dim>& at) {
@@ -131,11 +155,7 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a surface particle reads the end of
   settings.l0 = l0;
   settings.lame = {6e8, 4e8};
   settings.average = false;
-  for (std::size_t p = 0; p < n; ++p) {
-    double sum = 0;
-    for (Offset b = bonds.begin(p); b < bonds.end(p); ++b) sum += bonds.weight(b);
-    settings.n0 = std::max(settings.n0, sum);
-  }
+  settings.n0 = full_neighbourhood_weight(bonds, n);
   const MatArray<Dim, double> point(n, Mat<Dim>::Zero());
   const auto unloaded = [](std::size_t) { return false; };
   const auto sigma_1 = [](const Mat<Dim>& t) {
@@ -238,14 +258,11 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a face particle on the plane of a c
   Vec<Dim> upper = Vec<Dim>::Constant(0.06);
   upper[0] = 0.2;
   if (Dim == 3) upper[Dim - 1] = 0.1;  // the particles read and their face neighbours 2 l0 or more inside the sides
-  const auto block = scenes::material_block<Dim>(Vec<Dim>::Zero(), upper, l0);
-  const auto& reference = block.positions();
+  BondedBar<Dim> bar(upper, l0, re);
+  const auto& reference = bar.reference;
+  auto& bonds = bar.bonds;
   const std::size_t n = reference.size();
-  BondList<Dim> bonds;
-  bonds.template build<KoshizukaWeight>(reference, std::vector<std::int32_t>(n, 0), re);
-  double lowest = reference[0][1], highest = reference[0][1];
-  for (const auto& p : reference) lowest = std::min(lowest, p[1]), highest = std::max(highest, p[1]);
-  const double middle = 0.5 * (lowest + highest);
+  const double lowest = bar.lowest, highest = bar.highest, middle = 0.5 * (lowest + highest);
   VecArray<Dim, double> x = reference;
   // Bent, more towards the bar's far end: a strain quadratic along the face, whose averages
   // along it move with each pass.
@@ -256,11 +273,7 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a face particle on the plane of a c
   settings.l0 = l0;
   settings.lame = {6e8, 4e8};
   settings.self_weight = KoshizukaWeight::value(l0, re);
-  for (std::size_t p = 0; p < n; ++p) {
-    double sum = 0;
-    for (Offset b = bonds.begin(p); b < bonds.end(p); ++b) sum += bonds.weight(b);
-    settings.n0 = std::max(settings.n0, sum);
-  }
+  settings.n0 = full_neighbourhood_weight(bonds, n);
   const MatArray<Dim, double> point(n, Mat<Dim>::Zero());
   const auto unloaded = [](std::size_t) { return false; };
   FailureStressReadout<Dim> readout, samples_only;
@@ -378,11 +391,7 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: the screened read is the full read 
   settings.l0 = l0;
   settings.self_weight = KoshizukaWeight::value(l0, re);
   settings.lame = lame;
-  for (std::size_t k = 0; k < n; ++k) {  // a full neighbourhood's weight
-    double sum = 0;
-    for (Offset b = bonds.begin(k); b < bonds.end(k); ++b) sum += bonds.weight(b);
-    settings.n0 = std::max(settings.n0, sum);
-  }
+  settings.n0 = full_neighbourhood_weight(bonds, n);
   const auto unloaded = [](std::size_t) { return false; };
   const auto bound = [](const Mat<Dim>& t) { return MaxPrincipalStress::upper_bound<Dim, double>(t); };
   const auto sigma_1 = [](const Mat<Dim>& t) {
