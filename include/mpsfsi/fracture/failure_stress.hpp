@@ -559,7 +559,7 @@ class FailureStressReadout {
   std::vector<std::uint8_t> two_ended_;  // read outside with both ends, the end chosen after the averaging (or empty)
   std::vector<std::uint8_t> cut_out_;  // empty until the first CrackSide::slab failure
   VecArray<Dim, double> cut_out_normal_;  // their crack normals
-  std::vector<std::uint8_t> crack_ahead_;  // read outside, in the slab of a cut-out neighbour (sample())
+  std::vector<std::uint8_t> crack_ahead_;  // read outside, on the plane of a crack across its face (sample())
   // The settings of the last read (complete() averages with them again).
   double self_weight_ = 0;
   bool at_surface_ = false;
