@@ -136,9 +136,9 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a surface particle reads the end of
   const double l0 = 0.01, re = 2.1 * l0, k = 0.03;
   Vec<Dim> upper = Vec<Dim>::Constant(0.06);
   upper[0] = 0.2;
-  BondedBar<Dim> bar(upper, l0, re);
+  const BondedBar<Dim> bar(upper, l0, re);
   const auto& reference = bar.reference;
-  auto& bonds = bar.bonds;
+  const auto& bonds = bar.bonds;
   const std::size_t n = reference.size();
   const double lowest = bar.lowest, highest = bar.highest, middle = 0.5 * (lowest + highest);
   VecArray<Dim, double> x = reference;
@@ -258,9 +258,9 @@ TEST_CASE_TEMPLATE("fracture.failure_stress: a face particle on the plane of a c
   Vec<Dim> upper = Vec<Dim>::Constant(0.06);
   upper[0] = 0.2;
   if (Dim == 3) upper[Dim - 1] = 0.1;  // the particles read and their face neighbours 2 l0 or more inside the sides
-  BondedBar<Dim> bar(upper, l0, re);
+  const BondedBar<Dim> bar(upper, l0, re);
   const auto& reference = bar.reference;
-  auto& bonds = bar.bonds;
+  const auto& bonds = bar.bonds;
   const std::size_t n = reference.size();
   const double lowest = bar.lowest, highest = bar.highest, middle = 0.5 * (lowest + highest);
   VecArray<Dim, double> x = reference;
