@@ -238,13 +238,16 @@ TEST_CASE("scenes.floating_ice_beam: the 3D strip in its channel") {
   const auto rows_under = static_cast<std::size_t>(std::lround(yb / l0));
   const auto open_columns = static_cast<std::size_t>(std::lround((s.tank_length(l0) - L) / l0));
   const auto open_rows = static_cast<std::size_t>(std::lround(level / l0));
-  std::size_t fluid = 0, side_walls = 0;
+  std::size_t fluid = 0, near_wall = 0, far_wall = 0, above = 0;
   double closest = 1e300;
+  const double tank_top = yb + s.thickness + 2 * l0;
   for (std::size_t i = 0; i < water.size(); ++i) {
     const auto& x = water.positions()[i];
     for (std::size_t j = 0; j < beam.size(); j += 29) closest = std::min(closest, (x - beam.positions()[j]).norm());
+    above += x[1] > tank_top;  // the tank is open above, along y, the scene's vertical
     if (water.kinds()[i] != ParticleKind::fluid) {
-      if (x[2] < 0 || x[2] > W) ++side_walls;
+      near_wall += x[2] < 0;
+      far_wall += x[2] > W;
       continue;
     }
     ++fluid;
@@ -253,7 +256,9 @@ TEST_CASE("scenes.floating_ice_beam: the 3D strip in its channel") {
     CHECK(x[2] < W);
   }
   CHECK(fluid == (columns * rows_under + open_columns * open_rows) * across);
-  CHECK(side_walls > 0);
+  CHECK(near_wall > 0);
+  CHECK(far_wall == near_wall);  // a side wall on both sides of the channel
+  CHECK(above == 0);
   CHECK(closest >= l0 * (1 - 1e-9));
 }
 

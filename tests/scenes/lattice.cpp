@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include "mpsfsi/scenes/lattice.hpp"
+#include "mpsfsi/scenes/tank.hpp"
 
 using namespace mpsfsi;
 
@@ -33,6 +34,43 @@ TEST_CASE("scenes.lattice: jitter is bounded and repeatable") {
     moved = moved || a.positions()[i] != original[i];
   }
   CHECK(moved);
+}
+
+// A tank of 4 x 3 x 2 spacings, one wall layer and one of dummies: walls on every side but the
+// top, which is the last axis by default or the one named.
+TEST_CASE("scenes.tank: open above along the vertical axis it is given") {
+  const double l0 = 1;
+  for (const int up : {2, 1, 0}) {
+    CAPTURE(up);
+    ParticleSet<3> tank;
+    scenes::add_tank<3, double>(tank, Vec<3>(4, 3, 2), l0, 1, up);
+    const Vec<3> size(4, 3, 2);
+    std::size_t below[3] = {0, 0, 0}, beyond[3] = {0, 0, 0}, walls = 0;
+    for (std::size_t i = 0; i < tank.size(); ++i) {
+      const auto& x = tank.positions()[i];
+      for (int k = 0; k < 3; ++k) {
+        below[k] += x[k] < 0;
+        beyond[k] += x[k] > size[k];
+      }
+      walls += tank.kinds()[i] == ParticleKind::wall;
+      CHECK(!((x.array() > 0).all() && (x.array() < size.array()).all()));  // nothing inside
+    }
+    for (int k = 0; k < 3; ++k) {
+      CHECK(below[k] > 0);
+      if (k == up) CHECK(beyond[k] == 0);
+      else CHECK(beyond[k] == below[k]);
+    }
+    // One wall layer around the region's box, less its top face: the box of 6 x 5 x 4 sites
+    // (4 x 3 x 2 and a layer on each side), the region's sites and the top face's taken out.
+    const int s[3] = {4, 3, 2};
+    int top_face = 1;
+    for (int k = 0; k < 3; ++k)
+      if (k != up) top_face *= s[k] + 2;
+    CHECK(walls == static_cast<std::size_t>(6 * 5 * 4 - 4 * 3 * 2 - top_face));
+  }
+  ParticleSet<2> flat;
+  auto vertical_z_in_2d = [&] { scenes::add_tank<2, double>(flat, Vec<2>(1, 1), l0, 1, 2); };
+  CHECK_THROWS_AS(vertical_z_in_2d(), InvalidInput);
 }
 
 TEST_CASE("scenes.lattice: invalid boxes") {

@@ -134,10 +134,14 @@ class FluidSolver {
     c_grad_ = ideal_lattice_constants<Dim, Weight>(p_.l0, p_.re_gradient());
     c_lap_ = ideal_lattice_constants<Dim, Weight>(p_.l0, p_.re_laplacian());
     external_.assign(set_.size(), vec_type::Zero());
+    // The particles' extent along gravity (along the last axis without gravity).
+    vec_type down = vec_type::Zero();
+    down[Dim - 1] = -1;
+    if (p_.gravity.norm() > 0) down = p_.gravity.normalized();
     double lo = std::numeric_limits<double>::max(), hi = -lo;
     for (std::size_t i = 0; i < set_.size(); ++i) {
-      lo = std::min(lo, set_.positions()[i][Dim - 1]);
-      hi = std::max(hi, set_.positions()[i][Dim - 1]);
+      lo = std::min(lo, set_.positions()[i].dot(down));
+      hi = std::max(hi, set_.positions()[i].dot(down));
     }
     reference_speed_ = std::sqrt(2 * p_.gravity.norm() * std::max(hi - lo, p_.l0));
     update_neighbors();

@@ -173,7 +173,8 @@ struct FloatingIceBeam {
   double level_rise(double P, double l0) const { return P / foundation_modulus() / tank_length(l0); }
 
   // The water and the tank (one wall layer, `dummy_layers` behind it) up to two spacings above
-  // the beam's top; in 3D the channel's side walls as well.
+  // the beam's top, open above (y); in 3D the channel's side walls as well. The fluid's gravity
+  // must point along -y (FluidParameters::gravity), in 3D too.
   template <int Dim = 2>
   ParticleSet<Dim> fluid_particles(double l0, int dummy_layers = 4) const {
     check<Dim>(l0);
@@ -181,7 +182,7 @@ struct FloatingIceBeam {
     ParticleSet<Dim> set;
     add_block(set, point<Dim>(0, 0, 0), point<Dim>(L, yb, width_for(l0)), l0, ParticleKind::fluid);
     add_block(set, point<Dim>(L, 0, 0), point<Dim>(T, open_water_level(l0), width_for(l0)), l0, ParticleKind::fluid);
-    add_tank(set, point<Dim>(T, yb + thickness + 2 * l0, width_for(l0)), l0, dummy_layers);
+    add_tank(set, point<Dim>(T, yb + thickness + 2 * l0, width_for(l0)), l0, dummy_layers, 1);
     return set;
   }
 

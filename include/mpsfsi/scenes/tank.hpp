@@ -37,12 +37,14 @@ void add_block(ParticleSet<Dim, Scalar>& set, const typename ParticleSet<Dim, Sc
 
 // Appends an open-top tank around the region [0, size]: one layer of wall particles against
 // the region (in the PPE) and `dummy_layers` layers of dummy particles behind it (number
-// density only), on the bottom and the sides, up to the region's top.
+// density only), on the bottom and the sides, up to the region's top. `up` is the vertical axis,
+// open at the top: the last one by default (y in 2D, z in 3D).
 template <int Dim, class Scalar>
 void add_tank(ParticleSet<Dim, Scalar>& set, const typename ParticleSet<Dim, Scalar>::vec_type& size, Scalar l0,
-              int dummy_layers = 2) {
+              int dummy_layers = 2, int up = Dim - 1) {
   if (!(l0 > 0) || !size.allFinite() || (size.array() <= 0).any() || dummy_layers < 0)
     detail::throw_invalid("scenes::add_tank", "size and l0 must be positive, dummy_layers >= 0");
+  if (up < 0 || up >= Dim) detail::throw_invalid("scenes::add_tank", "the vertical axis must be one of the set's axes");
   const int layers = 1 + dummy_layers;
   std::int64_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, cells[3] = {1, 1, 1};
   for (int k = 0; k < Dim; ++k) {
@@ -50,7 +52,7 @@ void add_tank(ParticleSet<Dim, Scalar>& set, const typename ParticleSet<Dim, Sca
     lo[k] = -layers;
     hi[k] = cells[k] + layers - 1;
   }
-  hi[Dim - 1] = cells[Dim - 1] - 1;  // open top
+  hi[up] = cells[up] - 1;  // open top
   for (std::int64_t c = lo[2]; c <= hi[2]; ++c)
     for (std::int64_t b = lo[1]; b <= hi[1]; ++b)
       for (std::int64_t a = lo[0]; a <= hi[0]; ++a) {
