@@ -32,14 +32,19 @@
 namespace floating_ice {
 
 // The water under the ice: the settings for water under a long structure (docs/theory.md, section
-// 2.9), with negative pressures kept.
-using UnderIceWater = WaterUnderLongStructure<2>;
+// 2.9), with negative pressures kept; gravity along -y, the scene's vertical in 2D and 3D.
+template <int Dim = 2>
+using UnderIceWater = WaterUnderLongStructure<Dim>;
 
-inline FluidParameters<2> water_under_ice_parameters(double l0, double dt) {
-  FluidParameters<2> fp;
+template <int Dim = 2>
+FluidParameters<Dim> water_under_ice_parameters(double l0, double dt) {
+  FluidParameters<Dim> fp;
   fp.l0 = l0;
   fp.dt = dt;
   fp.negative_pressure = NegativePressure::keep;
+  const double g = fp.gravity.norm();
+  fp.gravity = Vec<Dim>::Zero();
+  fp.gravity[1] = -g;
   return under_structure(fp);
 }
 
@@ -47,12 +52,13 @@ inline FluidParameters<2> water_under_ice_parameters(double l0, double dt) {
 // `inertia_scale` and its gravity by the inverse (the weight stays), with the brittle solid's bond
 // viscosity (solid_parameters.hpp): without it the scaled ice's own vibrations, a few coupling steps
 // long at large inertias, grow under the lagging load as well.
-inline SolidParameters<2> floating_ice_parameters(const scenes::FloatingIceBeam& scene, double l0,
-                                                  double inertia_scale) {
-  SolidParameters<2> sp;
+template <int Dim = 2>
+SolidParameters<Dim> floating_ice_parameters(const scenes::FloatingIceBeam& scene, double l0, double inertia_scale) {
+  SolidParameters<Dim> sp;
   sp.l0 = l0;
   sp.density = scene.ice_density * inertia_scale;
-  sp.gravity = Vec<2>(0, -scene.gravity / inertia_scale);
+  sp.gravity = Vec<Dim>::Zero();
+  sp.gravity[1] = -scene.gravity / inertia_scale;
   sp.youngs_modulus = scene.youngs_modulus;
   sp.poisson_ratio = scene.poisson_ratio;
   sp.plane_model = PlaneModel::plane_stress;
@@ -119,6 +125,11 @@ struct WaterRunResult {
   double largest_balance_error = 0;
   double run_balance_error = 0;      // the same over the whole run
   int water_on_ice = 0;              // water particles above the ice's top face at the end
+  double sinking = 0;                // the ice's mean displacement downwards at the end, m
+  // 3D: at the end, the mean displacement downwards of the strip's side at z = width less that of
+  // its side at z = 0 (a roll about the strip's long axis), and the strip's mean displacement
+  // across the channel, m. The scene is mirror symmetric about the channel's mid-plane.
+  double roll = 0, sideways = 0;
   double fluid_solves_per_step = 0;
   int most_fluid_solves = 0;
   long long steps = 0;
@@ -134,33 +145,39 @@ struct WaterRunResult {
 // interface acceleration and with the linear fit of eq 18's pressure (docs/theory.md, 4.3-4.4).
 // The loaded end is on a roller at mid-thickness against the tank wall (roller_particle); its
 // column carries P, spread evenly over its particles. The wetted bottom face is marked as under a
-// distributed load, the water's, for the failure read-out. `Ice` is the solid: ElasticSolver<2>
-// (nothing fails) or IceSolver (brittle). Prints the state every simulated second. A blow-up ends
-// the run with `blew_up` set and its message printed; the files written until then stay.
+// distributed load, the water's, for the failure read-out. `Ice` is the solid: ElasticSolver<Dim>
+// (nothing fails) or IceSolverOf<Dim> (brittle). In 3D the ice is the scene's strip across its
+// channel: the roller is the end column's mid-thickness row, the end load P times the width is
+// shared by the end column's particles, and forces are reported per unit width. Prints the state
+// every simulated second. A blow-up ends the run with `blew_up` set and its message printed; the
+// files written until then stay.
 template <class Ice>
 WaterRunResult run_in_water(const scenes::FloatingIceBeam& scene, const WaterRunSettings& s, const EndLoad& load) {
+  constexpr int Dim = Ice::dimension;
   const double l0 = s.l0;
   std::vector<std::size_t> end_column;
-  auto sp = floating_ice_parameters(scene, l0, s.inertia_scale);
+  auto sp = floating_ice_parameters<Dim>(scene, l0, s.inertia_scale);
   sp.damping = s.damping;
   sp.tensile_strength = scene.tensile_strength;
-  auto beam = scene.beam_particles(l0, end_column);
-  const auto roller = scene.roller_particle(beam, end_column, l0);
+  auto beam = scene.beam_particles<Dim>(l0, end_column);
+  const auto roller = scene.roller_particles(beam, end_column, l0);
   Ice ice(std::move(beam), sp);
-  ice.support(roller, Vec<2>(1, 0));
+  for (const auto i : roller) ice.support(i, Vec<Dim>::UnitX());
   for (const auto i : scene.wetted_bottom(ice.reference_positions(), l0)) ice.mark_distributed_load(i);
-  auto fp = water_under_ice_parameters(l0, 0);
+  auto fp = water_under_ice_parameters<Dim>(l0, 0);
   fp.max_dt = s.max_dt;
   fp.kinematic_viscosity = s.kinematic_viscosity;
   CouplingParameters cp;
   cp.interface_acceleration = false;
   cp.interface_pressure = InterfacePressure::linear_fit;
-  FsiCoupler<FluidSolver<2, UnderIceWater>, Ice, InterfaceQuasiNewton> coupler(scene.fluid_particles(l0), fp,
-                                                                              std::move(ice), cp);
+  FsiCoupler<FluidSolver<Dim, UnderIceWater<Dim>>, Ice, InterfaceQuasiNewton> coupler(
+      scene.fluid_particles<Dim>(l0), fp, std::move(ice), cp);
   const auto& solid = coupler.solid();
+  const double width = Dim == 3 ? scene.width_for(l0) : 1.0;  // loads and forces per unit width
   const double weight = scene.ice_density * scene.gravity * scene.thickness * scene.beam_length_for(l0);
   const double top_row = scene.beam_bottom(l0) + scene.thickness - 0.5 * l0;
-  VecArray<2, double> start_shape = solid.reference_positions();
+  auto lift = [&] { return coupler.total_interface_force()[1] / width; };  // the water's force on the ice, N/m
+  VecArray<Dim, double> start_shape = solid.reference_positions();
   WaterRunResult r;
   r.ice_particles = solid.particles().size();
   r.water_particles = coupler.structure_offset();
@@ -240,7 +257,7 @@ WaterRunResult run_in_water(const scenes::FloatingIceBeam& scene, const WaterRun
     while (coupler.time() < stop_at - 0.5 * dt) {
       const double P = load.at(coupler.time() + dt);
       auto& applied = coupler.applied_force();
-      for (const auto i : end_column) applied[i][1] = -P / static_cast<double>(end_column.size());
+      for (const auto i : end_column) applied[i][1] = -P * width / static_cast<double>(end_column.size());
       const double t_before = coupler.time();
       coupler.step();
       dt = coupler.time() - t_before;
@@ -274,7 +291,7 @@ WaterRunResult run_in_water(const scenes::FloatingIceBeam& scene, const WaterRun
         next_sample += 0.05;
         const auto w = scene.column_deflections(solid.particles().positions(), start_shape, l0);
         history->row({t, P, w[0], scene.deflection(P, 0.5 * l0) - scene.level_rise(P, l0),
-                      coupler.total_interface_force()[1] - weight, static_cast<double>(solid.failure_events()),
+                      lift() - weight, static_cast<double>(solid.failure_events()),
                       static_cast<double>(solid.cut_bonds()), static_cast<double>(coupler.last_iterations())});
       }
       const bool fracturing = failed && t < solid.first_failure_time() + s.after_failure;
@@ -283,7 +300,7 @@ WaterRunResult run_in_water(const scenes::FloatingIceBeam& scene, const WaterRun
         snapshot();
         next_snapshot = t + (fracturing ? fracture_every : s.snapshot_every);
       }
-      second_sum += (coupler.total_interface_force()[1] / (weight + P) - 1) * dt;
+      second_sum += (lift() / (weight + P) - 1) * dt;
       second_time += dt;
       if (t < next_report - 0.5 * dt && t < stop_at - 0.5 * dt) continue;
       next_report += 1;
@@ -321,9 +338,24 @@ WaterRunResult run_in_water(const scenes::FloatingIceBeam& scene, const WaterRun
     write_profile(r.at_profile);
   }
   r.water_on_ice = water_on_ice();
+  {
+    const auto& x = solid.particles().positions();
+    const auto& x0 = solid.reference_positions();
+    double side_low = 0, side_high = 0;
+    int n_low = 0, n_high = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      r.sinking -= (x[i][1] - x0[i][1]) / static_cast<double>(x.size());
+      if constexpr (Dim == 3) {
+        r.sideways += (x[i][2] - x0[i][2]) / static_cast<double>(x.size());
+        if (x0[i][2] < l0) side_low -= x[i][1] - x0[i][1], ++n_low;
+        if (x0[i][2] > width - l0) side_high -= x[i][1] - x0[i][1], ++n_high;
+      }
+    }
+    if (n_low > 0 && n_high > 0) r.roll = side_high / n_high - side_low / n_low;
+  }
   r.fluid_solves_per_step = r.steps > 0 ? double(solves) / double(r.steps) : 0;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  if constexpr (std::is_same_v<Ice, IceSolver>) {
+  if constexpr (std::is_same_v<Ice, IceSolverOf<Dim>>) {
     r.broken = read_break(solid, wall_start);
     if (r.broken.failures > 0) {
       r.broken.load_at_failure = Vec<2>(0, -load.at(r.broken.first_failure_time));

@@ -8,8 +8,9 @@
 //    fracture the load rises past P_f until the beam breaks, and the profile is compared at
 //    0.9 P_f; without, P_f / 2 is held to 30 s and compared then.
 //  --foundation springs: the same ice on springs under its bottom row, the water not simulated
-//    (h = 40 mm, 917 kg/m3; docs/validation/fracture.md, "Ice on an elastic foundation"); with
-//    --dim 3 a strip of --width (3 h by default) under a line load along its end.
+//    (h = 40 mm, 917 kg/m3; docs/validation/fracture.md, "Ice on an elastic foundation").
+//  --dim 3: on either foundation, a strip of --width (3 h by default) across a channel, under a
+//    line load along its end.
 // Writes the deflection profile against Hetenyi's, the load history, every particle failure and
 // VTU/PVD snapshots (with water: of the ice and the water); plot.py renders the PNGs.
 // `floating_ice_beam --help` lists the options.
@@ -44,6 +45,7 @@ struct Outcome {
   floating_ice::BreakResult brk;
   double end_time = 0, wall_seconds = 0, fluid_solves_per_step = 0;
   double moment_before_load = 0;  // N m/m at pi / (4 lambda); with water only (springs: none)
+  double roll = 0, sideways = 0;   // m; the 3D strip in water only (WaterRunResult)
   int most_fluid_solves = 0;
   std::size_t particles = 0, water_particles = 0;
   long long steps = 0;
@@ -69,6 +71,14 @@ Outcome run_on_springs(const mpsfsi::scenes::FloatingIceBeam& scene, const Optio
   return c;
 }
 
+template <int Dim>
+floating_ice::WaterRunResult run_in_water_as(const mpsfsi::scenes::FloatingIceBeam& scene,
+                                             const floating_ice::WaterRunSettings& settings,
+                                             const floating_ice::EndLoad& load, bool fracture) {
+  return fracture ? floating_ice::run_in_water<floating_ice::IceSolverOf<Dim>>(scene, settings, load)
+                  : floating_ice::run_in_water<mpsfsi::ElasticSolver<Dim>>(scene, settings, load);
+}
+
 Outcome run_in_water(const mpsfsi::scenes::FloatingIceBeam& scene, const Options& o) {
   const double l0 = scene.thickness / o.rows;
   const bool fracture = o.fracture == "on";
@@ -83,8 +93,8 @@ Outcome run_in_water(const mpsfsi::scenes::FloatingIceBeam& scene, const Options
               settings.inertia_scale, load.unloaded, load.ramp, load.ramped,
               fracture ? ", held 2 s, then rising by 0.02 P_f per second until the beam breaks" : ", held",
               settings.t_end);
-  const auto r = fracture ? floating_ice::run_in_water<floating_ice::IceSolver>(scene, settings, load)
-                          : floating_ice::run_in_water<mpsfsi::ElasticSolver<2>>(scene, settings, load);
+  const auto r = o.dim == 3 ? run_in_water_as<3>(scene, settings, load, fracture)
+                            : run_in_water_as<2>(scene, settings, load, fracture);
   Outcome c;
   if (r.blew_up) c.error = r.error + " (the files written until then stay)";
   const auto& d = r.at_profile;
@@ -96,6 +106,8 @@ Outcome run_in_water(const mpsfsi::scenes::FloatingIceBeam& scene, const Options
   c.deflection.w = d.w;
   c.deflection.moment_error = d.moment_error;
   c.moment_before_load = r.moment_at_start;
+  c.roll = r.roll;
+  c.sideways = r.sideways;
   c.brk = r.broken;
   c.end_time = r.end_time;
   c.wall_seconds = r.wall_seconds;
@@ -119,7 +131,7 @@ int main(int argc, char** argv) try {
   cli.add("--ice-density", o.ice_density, "ice density; 0: 875 with water (its draft whole rows at 8 rows), 917 on springs",
           "kg/m3");
   cli.add("--rows", o.rows, "particles through the thickness (h / l0), at least 2");
-  cli.add("--dim", o.dim, "2, or 3 for a strip (on springs only)")->check(mpsfsi_examples::one_of({"2", "3"}));
+  cli.add("--dim", o.dim, "2, or 3 for a strip across a channel")->check(mpsfsi_examples::one_of({"2", "3"}));
   cli.add("--width", o.width, "with --dim 3: the strip's width, rounded to whole spacings; 0: 3 h", "m");
   cli.add("--fracture", o.fracture, "raise the load past P_f until the beam breaks")
       ->check(mpsfsi_examples::one_of({"on", "off"}));
@@ -147,8 +159,6 @@ int main(int argc, char** argv) try {
   if (o.rows < 2) return usage_error("--rows: must be at least 2", o.rows);
   if (o.end_time < 0) return usage_error("--end-time: must be positive, or 0 for the protocol's end", o.end_time);
   if (o.end_time > 0 && !water) return usage_error("--end-time: only with --foundation water", o.end_time);
-  if (o.dim == 3 && water)
-    return usage_error("--dim: the 3D strip runs on springs only (--foundation springs)", o.dim);
   if (o.width < 0) return usage_error("--width: must be positive, or 0 for 3 h", o.width);
   if (!(o.after_failure > 0)) return usage_error("--after-failure: must be positive", o.after_failure);
   if (o.after_failure != 0.1 && water)
@@ -212,6 +222,9 @@ int main(int argc, char** argv) try {
                     100 * (b.far_piece_start / x_f - 1));
     }
   }
+  if (water && o.dim == 3)
+    std::printf("strip: at the end rolled by %.2e m (side at z = width less side at z = 0, down), moved across the "
+                "channel by %.2e m\n", r.roll, r.sideways);
   std::printf("summary: end deflection %+.2f %%, profile RMS %.2f %%, moment %+.2f %%, balance %+.1e",
               100 * d.end_error, 100 * d.profile_rms, 100 * d.moment_error, d.balance_error);
   if (water)

@@ -103,8 +103,8 @@ if (out / "failures.csv").exists():
 
 
 def read_vtu(path, names):
-    """The named point arrays and the points' x, y of one of the library's VTU files (raw appended
-    data, each array preceded by its length in bytes as a UInt64)."""
+    """The points' x, y, z and the named point arrays of one of the library's VTU files (raw
+    appended data, each array preceded by its length in bytes as a UInt64)."""
     data = path.read_bytes()
     start = data.index(b"<AppendedData")
     start = data.index(b"_", start) + 1
@@ -120,7 +120,7 @@ def read_vtu(path, names):
         values.frombytes(data[start + offset + 8:start + offset + 8 + size])
         arrays[name] = values
     points = arrays.pop("Points")
-    return points[0::3], points[1::3], arrays
+    return points[0::3], points[1::3], points[2::3], arrays
 
 
 def frames(name):
@@ -130,7 +130,8 @@ def frames(name):
 
 
 # The beam in water: the loaded end's first 2 m at two instants, the water coloured by its
-# pressure, the ice by its largest principal stress over its strength sigma_f; y stretched.
+# pressure, the ice by its largest principal stress over its strength sigma_f; y stretched. A 3D
+# strip is shown by its particles within half a spacing of the channel's mid-plane.
 if water and (out / "ice.pvd").exists():
     ice_frames, water_frames = frames("ice"), frames("water")
     failed = (out / "failures.csv").exists()
@@ -142,14 +143,20 @@ if water and (out / "ice.pvd").exists():
     fig, axes = plt.subplots(len(shown), 1, figsize=(10, 3.2 * len(shown)), squeeze=False)
     for ax, k in zip(axes[:, 0], shown):
         t = ice_frames[k][0]
-        wx, wy, w = read_vtu(out / water_frames[k][1], ["pressure", "kind"])
-        ix, iy, ice = read_vtu(out / ice_frames[k][1], ["max_principal_stress", "strength"])
+        wx, wy, wz, w = read_vtu(out / water_frames[k][1], ["pressure", "kind"])
+        ix, iy, iz, ice = read_vtu(out / ice_frames[k][1], ["max_principal_stress", "strength"])
+        mid = 0.5 * (min(iz) + max(iz))
+
+        def in_slice(z):
+            return abs(z - mid) <= 0.5 * l0 * (1 + 1e-6)
+
         bottom, top = min(iy) - 2 * h, max(iy) + 1.5 * l0
-        keep = [i for i in range(len(wx)) if w["kind"][i] == 0 and wx[i] < 2.0 and wy[i] > bottom]
+        keep = [i for i in range(len(wx))
+                if w["kind"][i] == 0 and wx[i] < 2.0 and wy[i] > bottom and in_slice(wz[i])]
         sc = ax.scatter([wx[i] for i in keep], [wy[i] for i in keep], c=[w["pressure"][i] / 1e3 for i in keep],
                         s=size, cmap="viridis", marker="s", linewidths=0)
         fig.colorbar(sc, ax=ax, label="water p (kPa)", pad=0.01)
-        ice_keep = [i for i in range(len(ix)) if ix[i] < 2.0]
+        ice_keep = [i for i in range(len(ix)) if ix[i] < 2.0 and in_slice(iz[i])]
         si = ax.scatter([ix[i] for i in ice_keep], [iy[i] for i in ice_keep],
                         c=[ice["max_principal_stress"][i] / ice["strength"][i] for i in ice_keep], cmap="coolwarm",
                         vmin=-1, vmax=1, s=size, marker="s", linewidths=0)
