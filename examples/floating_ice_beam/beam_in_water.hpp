@@ -2,8 +2,9 @@
 // Floating ice coupled to its water: the ice of scenes::FloatingIceBeam floats on the water of its
 // tank, both under gravity, and its end is loaded (docs/validation/fsi.md, "Floating ice beam under
 // an end load"). Deflection against Hetenyi's semi-infinite beam on the Winkler foundation
-// k = rho_w g, the break against his largest moment. Used by the floating_ice_beam example
-// (--foundation water) and by tests/verification/floating_beam_in_water.cpp.
+// k = rho_w g, the break against his largest moment. The 2D beam, or in 3D the scene's strip
+// across its channel. Used by the floating_ice_beam example (--foundation water) and by
+// tests/verification/floating_beam_in_water.cpp and fsi.cpp.
 #pragma once
 
 #include <algorithm>
@@ -48,7 +49,7 @@ FluidParameters<Dim> water_under_ice_parameters(double l0, double dt) {
   return under_structure(fp);
 }
 
-// The floating beam's ice: scenes::FloatingIceBeam's material in plane stress, its inertia scaled by
+// The floating beam's ice: scenes::FloatingIceBeam's material (in plane stress in 2D), its inertia scaled by
 // `inertia_scale` and its gravity by the inverse (the weight stays), with the brittle solid's bond
 // viscosity (solid_parameters.hpp): without it the scaled ice's own vibrations, a few coupling steps
 // long at large inertias, grow under the lagging load as well.
@@ -143,7 +144,7 @@ struct WaterRunResult {
 
 // Runs the beam (h and the ice's material from `scene`) under `load`, IQN-ILS without eq 10's
 // interface acceleration and with the linear fit of eq 18's pressure (docs/theory.md, 4.3-4.4).
-// The loaded end is on a roller at mid-thickness against the tank wall (roller_particle); its
+// The loaded end is on a roller at mid-thickness against the tank wall (roller_particles); its
 // column carries P, spread evenly over its particles. The wetted bottom face is marked as under a
 // distributed load, the water's, for the failure read-out. `Ice` is the solid: ElasticSolver<Dim>
 // (nothing fails) or IceSolverOf<Dim> (brittle). In 3D the ice is the scene's strip across its
