@@ -142,6 +142,31 @@ struct WaterRunResult {
   std::string error;  // the blow-up's message: step, time and particle
 };
 
+// The ice's mean sinking and, in 3D, its roll and drift across the channel (WaterRunResult), from
+// its positions x and reference positions x0.
+template <int Dim>
+void set_ice_motion(const VecArray<Dim, double>& x, const VecArray<Dim, double>& x0, double l0, double width,
+                    WaterRunResult& r) {
+  const auto n = static_cast<double>(x.size());
+  double side_low = 0, side_high = 0;
+  int n_low = 0, n_high = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double down = x0[i][1] - x[i][1];
+    r.sinking += down / n;
+    if constexpr (Dim == 3) {
+      r.sideways += (x[i][2] - x0[i][2]) / n;
+      if (x0[i][2] < l0) {
+        side_low += down;
+        ++n_low;
+      } else if (x0[i][2] > width - l0) {
+        side_high += down;
+        ++n_high;
+      }
+    }
+  }
+  if (n_low > 0 && n_high > 0) r.roll = side_high / n_high - side_low / n_low;
+}
+
 // Runs the beam (h and the ice's material from `scene`) under `load`, IQN-ILS without eq 10's
 // interface acceleration and with the linear fit of eq 18's pressure (docs/theory.md, 4.3-4.4).
 // The loaded end is on a roller at mid-thickness against the tank wall (roller_particles); its
@@ -339,21 +364,7 @@ WaterRunResult run_in_water(const scenes::FloatingIceBeam& scene, const WaterRun
     write_profile(r.at_profile);
   }
   r.water_on_ice = water_on_ice();
-  {
-    const auto& x = solid.particles().positions();
-    const auto& x0 = solid.reference_positions();
-    double side_low = 0, side_high = 0;
-    int n_low = 0, n_high = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      r.sinking -= (x[i][1] - x0[i][1]) / static_cast<double>(x.size());
-      if constexpr (Dim == 3) {
-        r.sideways += (x[i][2] - x0[i][2]) / static_cast<double>(x.size());
-        if (x0[i][2] < l0) side_low -= x[i][1] - x0[i][1], ++n_low;
-        if (x0[i][2] > width - l0) side_high -= x[i][1] - x0[i][1], ++n_high;
-      }
-    }
-    if (n_low > 0 && n_high > 0) r.roll = side_high / n_high - side_low / n_low;
-  }
+  set_ice_motion(solid.particles().positions(), solid.reference_positions(), l0, width, r);
   r.fluid_solves_per_step = r.steps > 0 ? double(solves) / double(r.steps) : 0;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   if constexpr (std::is_same_v<Ice, IceSolverOf<Dim>>) {

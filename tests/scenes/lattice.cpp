@@ -62,10 +62,9 @@ TEST_CASE("scenes.tank: open above along the vertical axis it is given") {
     }
     // One wall layer around the region's box, less its top face: the box of 6 x 5 x 4 sites
     // (4 x 3 x 2 and a layer on each side), the region's sites and the top face's taken out.
-    const int s[3] = {4, 3, 2};
-    int top_face = 1;
+    double top_face = 1;
     for (int k = 0; k < 3; ++k)
-      if (k != up) top_face *= s[k] + 2;
+      if (k != up) top_face *= size[k] + 2;
     CHECK(walls == static_cast<std::size_t>(6 * 5 * 4 - 4 * 3 * 2 - top_face));
   }
   ParticleSet<2> flat;
