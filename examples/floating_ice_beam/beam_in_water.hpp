@@ -138,6 +138,7 @@ struct WaterRunResult {
   std::size_t ice_particles = 0, water_particles = 0;
   BreakResult broken;  // with a failure model: where and when the ice first failed, the pieces
   double wall_seconds = 0;
+  double fluid_seconds = 0, solid_seconds = 0;  // of wall_seconds: the water's steps, the ice's advances
   bool blew_up = false;
   std::string error;  // the blow-up's message: step, time and particle
 };
@@ -367,6 +368,8 @@ WaterRunResult run_in_water(const scenes::FloatingIceBeam& scene, const WaterRun
   set_ice_motion(solid.particles().positions(), solid.reference_positions(), l0, width, r);
   r.fluid_solves_per_step = r.steps > 0 ? double(solves) / double(r.steps) : 0;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  r.fluid_seconds = coupler.fluid_seconds();
+  r.solid_seconds = coupler.solid_seconds();
   if constexpr (std::is_same_v<Ice, IceSolverOf<Dim>>) {
     r.broken = read_break(solid, wall_start);
     if (r.broken.failures > 0) {

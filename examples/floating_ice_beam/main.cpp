@@ -14,6 +14,7 @@
 // Writes the deflection profile against Hetenyi's, the load history, every particle failure and
 // VTU/PVD snapshots (with water: of the ice and the water); plot.py renders the PNGs.
 // `floating_ice_beam --help` lists the options.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -44,6 +45,7 @@ struct Outcome {
   floating_ice::DeflectionCheck deflection;
   floating_ice::BreakResult brk;
   double end_time = 0, wall_seconds = 0, fluid_solves_per_step = 0;
+  double fluid_seconds = 0, solid_seconds = 0;  // of wall_seconds; with water only
   double moment_before_load = 0;  // N m/m at pi / (4 lambda); with water only (springs: none)
   double roll = 0, sideways = 0;   // m; the 3D strip in water only (WaterRunResult)
   int most_fluid_solves = 0;
@@ -112,6 +114,8 @@ Outcome run_in_water(const mpsfsi::scenes::FloatingIceBeam& scene, const Options
   c.end_time = r.end_time;
   c.wall_seconds = r.wall_seconds;
   c.fluid_solves_per_step = r.fluid_solves_per_step;
+  c.fluid_seconds = r.fluid_seconds;
+  c.solid_seconds = r.solid_seconds;
   c.most_fluid_solves = r.most_fluid_solves;
   c.particles = r.ice_particles + r.water_particles;
   c.water_particles = r.water_particles;
@@ -225,6 +229,10 @@ int main(int argc, char** argv) try {
   if (water && o.dim == 3)
     std::printf("strip: at the end rolled by %.2e m (side at z = width less side at z = 0, down), moved across the "
                 "channel by %.2e m\n", r.roll, r.sideways);
+  if (water)
+    std::printf("time: water %.1f s (%.1f ms a fluid solve), ice %.1f s, coupling and output %.1f s\n", r.fluid_seconds,
+                1e3 * r.fluid_seconds / std::max(1.0, r.fluid_solves_per_step * static_cast<double>(r.steps)), r.solid_seconds,
+                r.wall_seconds - r.fluid_seconds - r.solid_seconds);
   std::printf("summary: end deflection %+.2f %%, profile RMS %.2f %%, moment %+.2f %%, balance %+.1e",
               100 * d.end_error, 100 * d.profile_rms, 100 * d.moment_error, d.balance_error);
   if (water)

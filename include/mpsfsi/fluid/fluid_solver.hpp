@@ -154,7 +154,11 @@ class FluidSolver {
   void step() {
     check_external_acceleration();
     auto tick = clock::now();
-    if (step_count_ > 0) update_neighbors();
+    // A step repeated from the positions its neighbour lists were built for (snapshot_restored)
+    // reuses them, and with them the PPE's matrix and the gradient correction.
+    repeated_setup_ = returned_ && listed_positions_ == set_.positions() && listed_kinds_ == set_.kinds();
+    returned_ = false;
+    if (step_count_ > 0 && !repeated_setup_) update_neighbors();
     timings_.search = lap_time(tick);
     const double dt = choose_dt();
     auto& x = set_.positions();
@@ -193,7 +197,13 @@ class FluidSolver {
     }
     const bool leave_out = p_.enclosed_region == EnclosedRegion::zero_pressure;
     // Skips dummy neighbours, or takes them as ghosts (WallCondition::neumann).
-    ppe_.assemble(x, kind, surface_, list_all_, c_lap_, source_, a_, b_, leave_out, neumann ? &ghost_gradient_ : nullptr);
+    const auto* ghosts = neumann ? &ghost_gradient_ : nullptr;
+    if (repeated_setup_ && matrix_lists_ == lists_version_) {
+      ppe_.update_right_hand_side(x, kind, list_all_, c_lap_, source_, b_, ghosts);
+    } else {
+      ppe_.assemble(x, kind, surface_, list_all_, c_lap_, source_, a_, b_, leave_out, ghosts);
+      matrix_lists_ = lists_version_;
+    }
     if (ppe_.enclosed_fluid() > 0) {  // wall-only enclosed regions are left out silently
       if (!leave_out) {
         const auto i = static_cast<std::size_t>(*std::find_if(
@@ -230,7 +240,10 @@ class FluidSolver {
     }
 
     // Corrector (eq 14) with the corrected pressure gradient, checked before it is committed.
-    correction_.template update<Weight>(x, list_pw_, c_grad_);
+    if (!repeated_setup_ || correction_lists_ != lists_version_) {
+      correction_.template update<Weight>(x, list_pw_, c_grad_);
+      correction_lists_ = lists_version_;
+    }
     gradient<Weight>(x, list_pw_, new_pressure_, c_grad_, correction_, grad_p_, Policies::pressure_gradient_reference);
     const double speed_limit = p_.blowup_speed_factor * std::max(reference_speed_, p_.l0 / dt);
     for (std::size_t i = 0; i < n; ++i) {
@@ -327,10 +340,20 @@ class FluidSolver {
     update_neighbors();
   }
   // After a return to a state this solver held earlier in the run (an iterative coupling
-  // scheme's start of step, core/detail/state_archive.hpp): the next step uses the neighbour
-  // lists it would have used without the return, rebuilt at its start (the first step: the
-  // constructor's), so nothing is rebuilt here.
-  void snapshot_restored() { check_external_acceleration(); }
+  // scheme's start of step, core/detail/state_archive.hpp): nothing is rebuilt here. If the next
+  // step starts with the particles where they were when the neighbour lists were last built (a
+  // step repeated from its start), it reuses those lists, the PPE's matrix and the gradient
+  // correction, which depend on the positions and kinds alone (last_step_reused_setup); otherwise
+  // it rebuilds them. The positions the lists were built for are kept from the first return on, so
+  // runs without returns copy nothing.
+  void snapshot_restored() {
+    check_external_acceleration();
+    returned_ = true;
+    keep_listed_state_ = true;
+  }
+  // Whether the last step reused the neighbour lists, PPE matrix and gradient correction of an
+  // earlier attempt at the same step (snapshot_restored); the results are the same to the bit.
+  bool last_step_reused_setup() const { return repeated_setup_; }
 
  private:
   using clock = std::chrono::steady_clock;
@@ -351,6 +374,11 @@ class FluidSolver {
   }
 
   void update_neighbors() {
+    ++lists_version_;
+    if (keep_listed_state_) {
+      listed_positions_ = set_.positions();
+      listed_kinds_ = set_.kinds();
+    }
     QueryOptions opt;
     opt.store_distances = true;
     search_.build(set_.positions());
@@ -485,6 +513,13 @@ class FluidSolver {
   double time_ = 0, last_dt_ = 0, reference_speed_ = 0;
   long long step_count_ = 0, enclosed_steps_ = 0;
   bool warned_dt_ = false;
+  // The neighbour lists' build count, and the builds the PPE matrix and the gradient correction
+  // were made from; the positions and kinds of the last build, kept once a step has been repeated
+  // (snapshot_restored).
+  long long lists_version_ = 0, matrix_lists_ = -1, correction_lists_ = -1;
+  bool keep_listed_state_ = false, returned_ = false, repeated_setup_ = false;
+  VecArray<Dim> listed_positions_;
+  std::vector<ParticleKind> listed_kinds_;
 };
 
 }  // namespace MPSFSI_ABI

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -136,6 +137,38 @@ class PpeAssembler {
     left_out_.assign(x.size(), 0);
     for (const Index i : enclosed_) left_out_[static_cast<std::size_t>(i)] = 1;
     assemble_once(x, kinds, surface, list, lap, source, a, b);
+  }
+
+  // The right-hand side alone, for the rows and matrix of the last assemble(), built from the same
+  // positions, kinds and list: b_i = -s_i plus, with `ghost_gradient`, the ghost terms of row i's
+  // dummy neighbours, summed as assemble() sums them (the same b to the bit). For a step repeated
+  // from its start, whose matrix is unchanged while the source is not.
+  void update_right_hand_side(const VecArray<Dim, Scalar>& x, const std::vector<ParticleKind>& kinds,
+                              const BasicNeighborList<Scalar>& list, const MpsConstants<Scalar>& lap,
+                              const std::vector<Scalar>& source, PpeVector& b,
+                              const VecArray<Dim, Scalar>* ghost_gradient = nullptr) {
+    detail::require_list_rows(list, x.size(), "PpeAssembler::update_right_hand_side");
+    if (row_of_.size() != x.size())
+      detail::throw_invalid("PpeAssembler::update_right_hand_side",
+                            "called for " + std::to_string(x.size()) + " particles after an assemble() for " +
+                                std::to_string(row_of_.size()));
+    const auto rows = static_cast<std::int64_t>(particle_of_row_.size());
+    b.resize(rows);
+    const Scalar c = Scalar(2 * Dim) / (lap.lambda * lap.n0);
+    MPSFSI_OMP(parallel for schedule(static))
+    for (std::int64_t r = 0; r < rows; ++r) {
+      const auto i = static_cast<std::size_t>(particle_of_row_[static_cast<std::size_t>(r)]);
+      Scalar ghost = 0;
+      if (ghost_gradient)
+        for (Offset k = list.begin(i); k < list.end(i); ++k) {
+          const auto j = static_cast<std::size_t>(list.indices[k]);
+          if (kinds[j] != ParticleKind::dummy) continue;
+          const Vec<Dim, Scalar> rij = x[j] - x[i];
+          const Scalar w = Weight::value(detail::pair_distance(list, k, rij), lap.re);
+          if (w > 0) ghost += c * w * (*ghost_gradient)[i].dot(rij);
+        }
+      b[r] = static_cast<double>(ghost - source[i]);
+    }
   }
 
   // Particles of the last assemble() that lie in enclosed regions (see above), in row order.
