@@ -494,10 +494,10 @@ TEST_CASE("floating beam: IQN-ILS holds the free beam at the ice's own inertia")
 
 // The 3D strip against the 2D beam, unloaded over 3 s: both float, the water carrying the ice's
 // weight within the floating beam's force-balance tolerance, 1 % (docs/validation/fsi.md), on every
-// 1 s mean. Measured: 3D -0.60 %, -0.24 %, +0.13 %; 2D +0.20 %, -0.01 %, -0.03 %. The strip settles
+// 1 s mean. Measured: 3D -0.60 %, -0.18 %, -0.05 %; 2D +0.20 %, -0.01 %, -0.03 %. The strip settles
 // 1.3 mm lower (the 2D beam 0.3 mm higher) from where both start, a draft 0.08 l0 deeper. Its
-// mirror symmetry holds to round-off until about 1.5 s; by 1.8 s its sides differ by 1e-5 m,
-// and by 2e-5 m at 3 s (reported, not asserted: the short run above checks the symmetry).
+// mirror symmetry holds to round-off to 1 s; its sides differ by 2e-9 m at 1.5 s, 6e-6 m at 2 s
+// and 1.7e-5 m at 3 s (reported, not asserted: the short run above checks the symmetry).
 TEST_CASE("floating strip (3D): carries its weight as the 2D beam does") {
   const auto strip = short_floating_ice(3, 3), beam = short_floating_ice(2, 3);
   for (const auto* r : {&strip, &beam})
