@@ -229,10 +229,11 @@ int main(int argc, char** argv) try {
   if (water && o.dim == 3)
     std::printf("strip: at the end rolled by %.2e m (side at z = width less side at z = 0, down), moved across the "
                 "channel by %.2e m\n", r.roll, r.sideways);
-  if (water)
+  if (water) {
+    const double solves = std::max(1.0, r.fluid_solves_per_step * static_cast<double>(r.steps));
     std::printf("time: water %.1f s (%.1f ms a fluid solve), ice %.1f s, coupling and output %.1f s\n", r.fluid_seconds,
-                1e3 * r.fluid_seconds / std::max(1.0, r.fluid_solves_per_step * static_cast<double>(r.steps)), r.solid_seconds,
-                r.wall_seconds - r.fluid_seconds - r.solid_seconds);
+                1e3 * r.fluid_seconds / solves, r.solid_seconds, r.wall_seconds - r.fluid_seconds - r.solid_seconds);
+  }
   std::printf("summary: end deflection %+.2f %%, profile RMS %.2f %%, moment %+.2f %%, balance %+.1e",
               100 * d.end_error, 100 * d.profile_rms, 100 * d.moment_error, d.balance_error);
   if (water)

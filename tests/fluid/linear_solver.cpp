@@ -199,6 +199,49 @@ TEST_CASE("fluid.linear_solver: deflated SSOR CG solves a right-hand side from t
   parallel::set_num_threads(saved);
 }
 
+// A fluid step repeated from its start solves the same matrix with a new right-hand side
+// (FluidSolver::snapshot_restored); solve_same_matrix keeps the last solve's set-up for it, and
+// must give what a solver that sets up afresh gives, to the bit.
+template <class Solver>
+void check_same_matrix() {
+  const int m = 40, n = m * m;
+  const PpeMatrix a = test::poisson_2d(m);
+  PpeVector b1(n), b2(n);
+  for (int i = 0; i < n; ++i) {
+    b1[i] = 1.0 + std::cos(0.3 * i);
+    b2[i] = 1.0 + std::sin(0.2 * i);
+  }
+  Solver reusing, fresh;
+  PpeVector x1 = PpeVector::Zero(n);
+  REQUIRE(reusing.solve(a, b1, x1, 1e-10, 10000).converged);
+  PpeVector x_reused = x1, x_fresh = x1;
+  const SolveReport r_reused = reusing.solve_same_matrix(a, b2, x_reused, 1e-10, 10000);
+  const SolveReport r_fresh = fresh.solve(a, b2, x_fresh, 1e-10, 10000);
+  REQUIRE(r_reused.converged);
+  CHECK(r_reused.iterations == r_fresh.iterations);
+  CHECK(r_reused.relative_residual == r_fresh.relative_residual);
+  CHECK((x_reused.array() == x_fresh.array()).all());
+  // Without a set-up of its own (a fresh object), it sets up as solve() does.
+  Solver first_call;
+  PpeVector x_first = x1;
+  const SolveReport r_first = first_call.solve_same_matrix(a, b2, x_first, 1e-10, 10000);
+  CHECK(r_first.iterations == r_fresh.iterations);
+  CHECK((x_first.array() == x_fresh.array()).all());
+}
+
+TEST_CASE("fluid.linear_solver: SSOR CG on the last solve's matrix reuses its set-up, for the same answer") {
+  const int saved = parallel::max_threads();
+  for (int threads : {1, 2}) {
+    CAPTURE(threads);
+    parallel::set_num_threads(threads);
+    if (parallel::max_threads() != threads) continue;
+    check_same_matrix<SsorCg>();
+    check_same_matrix<DeflatedSsorCg>();
+  }
+  parallel::set_num_threads(saved);
+  static_assert(detail::has_solve_same_matrix<SsorCg>::value && !detail::has_solve_same_matrix<JacobiCg>::value);
+}
+
 TEST_CASE("fluid.linear_solver: SSOR CG rejects bad input clearly") {
   PpeMatrix a = test::poisson_2d(4);
   const PpeVector b = PpeVector::Ones(16);

@@ -198,7 +198,8 @@ class FluidSolver {
     const bool leave_out = p_.enclosed_region == EnclosedRegion::zero_pressure;
     // Skips dummy neighbours, or takes them as ghosts (WallCondition::neumann).
     const auto* ghosts = neumann ? &ghost_gradient_ : nullptr;
-    if (repeated_setup_ && matrix_lists_ == lists_version_) {
+    const bool same_matrix = repeated_setup_ && matrix_lists_ == lists_version_;
+    if (same_matrix) {
       ppe_.update_right_hand_side(x, kind, list_all_, c_lap_, source_, b_, ghosts);
     } else {
       ppe_.assemble(x, kind, surface_, list_all_, c_lap_, source_, a_, b_, leave_out, ghosts);
@@ -225,7 +226,16 @@ class FluidSolver {
     solution_.resize(static_cast<Eigen::Index>(ppe_.num_unknowns()));
     for (std::size_t r = 0; r < ppe_.num_unknowns(); ++r)
       solution_[static_cast<Eigen::Index>(r)] = pressure[static_cast<std::size_t>(ppe_.particle_of_row()[r])];
-    report_ = solver_.solve(a_, b_, solution_, p_.ppe_tolerance, p_.ppe_max_iterations);
+    using LinearSolver = typename Policies::linear_solver;
+    if constexpr (detail::has_solve_same_matrix<LinearSolver>::value) {
+      if (same_matrix && solved_lists_ == lists_version_)
+        report_ = solver_.solve_same_matrix(a_, b_, solution_, p_.ppe_tolerance, p_.ppe_max_iterations);
+      else
+        report_ = solver_.solve(a_, b_, solution_, p_.ppe_tolerance, p_.ppe_max_iterations);
+    } else {
+      report_ = solver_.solve(a_, b_, solution_, p_.ppe_tolerance, p_.ppe_max_iterations);
+    }
+    solved_lists_ = lists_version_;
     timings_.ppe_solve = lap_time(tick);
     if (!report_.converged || !solution_.allFinite())
       throw SimulationError("FluidSolver: PPE did not converge at step " + std::to_string(step_count_ + 1) +
@@ -514,9 +524,9 @@ class FluidSolver {
   long long step_count_ = 0, enclosed_steps_ = 0;
   bool warned_dt_ = false;
   // The neighbour lists' build count, and the builds the PPE matrix and the gradient correction
-  // were made from; the positions and kinds of the last build, kept once a step has been repeated
+  // were made from and the linear solver last solved on; the positions and kinds of the last build, kept once a step has been repeated
   // (snapshot_restored).
-  long long lists_version_ = 0, matrix_lists_ = -1, correction_lists_ = -1;
+  long long lists_version_ = 0, matrix_lists_ = -1, correction_lists_ = -1, solved_lists_ = -1;
   bool keep_listed_state_ = false, returned_ = false, repeated_setup_ = false;
   VecArray<Dim> listed_positions_;
   std::vector<ParticleKind> listed_kinds_;

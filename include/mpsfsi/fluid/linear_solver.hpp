@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "mpsfsi/core/abi.hpp"
@@ -25,11 +27,20 @@ struct SolveReport {
 
 // Linear-solver policies for the symmetric positive definite PPE matrix (row-major CSR). Each
 // has  SolveReport solve(const Matrix& A, const Vector& b, Vector& x, double tol, int max_iter)
-// with x holding the initial guess (the last pressure: a warm start) on entry.
+// with x holding the initial guess (the last pressure: a warm start) on entry. A policy may also
+// have solve_same_matrix with the same arguments, for a matrix equal to the last solve's, which
+// FluidSolver calls in a step repeated from its start (SsorCg: its set-up reused).
 using PpeMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 using PpeVector = Eigen::VectorXd;
 
 namespace detail {
+
+template <class S, class = void>
+struct has_solve_same_matrix : std::false_type {};
+template <class S>
+struct has_solve_same_matrix<S, std::void_t<decltype(std::declval<S&>().solve_same_matrix(
+                                    std::declval<const PpeMatrix&>(), std::declval<const PpeVector&>(),
+                                    std::declval<PpeVector&>(), 0.0, 0))>> : std::true_type {};
 
 template <class Preconditioner>
 class EigenCg {

@@ -106,7 +106,23 @@ class SsorCg {
   bool deflation = false;
 
   SolveReport solve(const PpeMatrix& a, const PpeVector& b, PpeVector& x, double tolerance, int max_iterations) {
+    return solve_reusing(a, b, x, tolerance, max_iterations, false);
+  }
+  // solve() for the matrix of the last solve, unchanged (the pattern and the values: a fluid step
+  // repeated from its start, FluidSolver::snapshot_restored). Reuses that solve's renumbered copies
+  // and, with deflation, its coarse space: the same answer to the bit, without the set-up. Sets up
+  // as solve() does if the last solve did not (or ran with other settings or threads).
+  SolveReport solve_same_matrix(const PpeMatrix& a, const PpeVector& b, PpeVector& x, double tolerance,
+                                int max_iterations) {
+    return solve_reusing(a, b, x, tolerance, max_iterations, true);
+  }
+
+ private:
+  // The solve; with `same_matrix`, the last solve's set-up if it has one for these settings.
+  SolveReport solve_reusing(const PpeMatrix& a, const PpeVector& b, PpeVector& x, double tolerance,
+                            int max_iterations, bool same_matrix) {
     if (!(omega > 0 && omega < 2)) detail::throw_invalid("SsorCg", "omega must lie in (0, 2), got " + detail::format_number(omega));
+    if (!same_matrix) set_up_ = false;
     const auto n = static_cast<std::int64_t>(a.rows());
     if (x.size() != a.rows()) x = PpeVector::Zero(a.rows());
     const double bb = b.squaredNorm();
@@ -115,8 +131,17 @@ class SsorCg {
       return SolveReport{true, 0, 0.0};
     }
     const int blocks = static_cast<int>(std::min<std::int64_t>(parallel::max_threads(), n));
-    if (!split(a, blocks)) return SolveReport{false, 0, 1.0};
-    const bool deflate = deflation && deflation_.build(a, row_at_.data());
+    if (!(set_up_ && rows_ == n && set_up_blocks_ == blocks && set_up_omega_ == omega &&
+          set_up_deflation_ == deflation)) {
+      set_up_ = false;
+      if (!split(a, blocks)) return SolveReport{false, 0, 1.0};
+      deflating_ = deflation && deflation_.build(a, row_at_.data());
+      set_up_ = true;
+      set_up_blocks_ = blocks;
+      set_up_omega_ = omega;
+      set_up_deflation_ = deflation;
+    }
+    const bool deflate = deflating_;
     // Work vectors in one block, offset from each other within a 4 KiB page (see JacobiCg); all
     // but x0 in the sweeps' order.
     const std::size_t stride = (static_cast<std::size_t>(n) + 511) / 512 * 512 + 24;
@@ -251,7 +276,6 @@ class SsorCg {
     return SolveReport{converged, it, std::sqrt(rr / bb)};
   }
 
- private:
   // row(k, sum1, sum2) for k = 0, 1, ..., n - 1 in dependency order: the blocks' interiors in
   // parallel, then the separator; the partial sums are added into sum1 and sum2.
   template <class Row>
@@ -436,6 +460,10 @@ class SsorCg {
 
   std::vector<double> work_;
   std::int64_t rows_ = 0;
+  // The set-up (split, the coarse space) of the last solve, for solve_same_matrix.
+  bool set_up_ = false, set_up_deflation_ = false, deflating_ = false;
+  int set_up_blocks_ = 0;
+  double set_up_omega_ = 0;
   enum RowClass : std::uint8_t { interior, reversed_interior, separator };
   std::vector<RowClass> row_class_;
   std::vector<std::int64_t> interior_first_;  // block b's interior: positions [first[b], first[b+1]); then the separator
