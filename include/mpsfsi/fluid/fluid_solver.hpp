@@ -524,8 +524,8 @@ class FluidSolver {
   long long step_count_ = 0, enclosed_steps_ = 0;
   bool warned_dt_ = false;
   // The neighbour lists' build count, and the builds the PPE matrix and the gradient correction
-  // were made from and the linear solver last solved on; the positions and kinds of the last build, kept once a step has been repeated
-  // (snapshot_restored).
+  // were made from and the linear solver last solved on; the positions and kinds of the last
+  // build, kept once a step has been repeated (snapshot_restored).
   long long lists_version_ = 0, matrix_lists_ = -1, correction_lists_ = -1, solved_lists_ = -1;
   bool keep_listed_state_ = false, returned_ = false, repeated_setup_ = false;
   VecArray<Dim> listed_positions_;
