@@ -37,14 +37,12 @@ namespace floating_ice {
 // the PPE is solved by the SSOR-CG deflated by aggregates: on the strip's water it needs about 13
 // iterations instead of 76 and takes less than half the time (docs/performance.md, coupled steps).
 // The 2D runs keep the plain SSOR-CG with which their figures were taken.
-template <int Dim>
-struct UnderIceWaterOf : WaterUnderLongStructure<Dim> {};
+template <int Dim = 2>
+struct UnderIceWater : WaterUnderLongStructure<Dim> {};
 template <>
-struct UnderIceWaterOf<3> : WaterUnderLongStructure<3> {
+struct UnderIceWater<3> : WaterUnderLongStructure<3> {
   using linear_solver = DeflatedSsorCg;
 };
-template <int Dim = 2>
-using UnderIceWater = UnderIceWaterOf<Dim>;
 
 template <int Dim = 2>
 FluidParameters<Dim> water_under_ice_parameters(double l0, double dt) {

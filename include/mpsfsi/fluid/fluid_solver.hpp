@@ -156,7 +156,8 @@ class FluidSolver {
     auto tick = clock::now();
     // A step repeated from the positions its neighbour lists were built for (snapshot_restored)
     // reuses them, and with them the PPE's matrix and the gradient correction.
-    repeated_setup_ = returned_ && listed_positions_ == set_.positions() && listed_kinds_ == set_.kinds();
+    repeated_setup_ = returned_ && set_up_lists_ == lists_version_ && listed_positions_ == set_.positions() &&
+                      listed_kinds_ == set_.kinds();
     returned_ = false;
     if (step_count_ > 0 && !repeated_setup_) update_neighbors();
     timings_.search = lap_time(tick);
@@ -198,12 +199,10 @@ class FluidSolver {
     const bool leave_out = p_.enclosed_region == EnclosedRegion::zero_pressure;
     // Skips dummy neighbours, or takes them as ghosts (WallCondition::neumann).
     const auto* ghosts = neumann ? &ghost_gradient_ : nullptr;
-    const bool same_matrix = repeated_setup_ && matrix_lists_ == lists_version_;
-    if (same_matrix) {
+    if (repeated_setup_) {
       ppe_.update_right_hand_side(x, kind, list_all_, c_lap_, source_, b_, ghosts);
     } else {
       ppe_.assemble(x, kind, surface_, list_all_, c_lap_, source_, a_, b_, leave_out, ghosts);
-      matrix_lists_ = lists_version_;
     }
     if (ppe_.enclosed_fluid() > 0) {  // wall-only enclosed regions are left out silently
       if (!leave_out) {
@@ -228,14 +227,13 @@ class FluidSolver {
       solution_[static_cast<Eigen::Index>(r)] = pressure[static_cast<std::size_t>(ppe_.particle_of_row()[r])];
     using LinearSolver = typename Policies::linear_solver;
     if constexpr (detail::has_solve_same_matrix<LinearSolver>::value) {
-      if (same_matrix && solved_lists_ == lists_version_)
+      if (repeated_setup_)
         report_ = solver_.solve_same_matrix(a_, b_, solution_, p_.ppe_tolerance, p_.ppe_max_iterations);
       else
         report_ = solver_.solve(a_, b_, solution_, p_.ppe_tolerance, p_.ppe_max_iterations);
     } else {
       report_ = solver_.solve(a_, b_, solution_, p_.ppe_tolerance, p_.ppe_max_iterations);
     }
-    solved_lists_ = lists_version_;
     timings_.ppe_solve = lap_time(tick);
     if (!report_.converged || !solution_.allFinite())
       throw SimulationError("FluidSolver: PPE did not converge at step " + std::to_string(step_count_ + 1) +
@@ -250,10 +248,8 @@ class FluidSolver {
     }
 
     // Corrector (eq 14) with the corrected pressure gradient, checked before it is committed.
-    if (!repeated_setup_ || correction_lists_ != lists_version_) {
-      correction_.template update<Weight>(x, list_pw_, c_grad_);
-      correction_lists_ = lists_version_;
-    }
+    if (!repeated_setup_) correction_.template update<Weight>(x, list_pw_, c_grad_);
+    set_up_lists_ = lists_version_;
     gradient<Weight>(x, list_pw_, new_pressure_, c_grad_, correction_, grad_p_, Policies::pressure_gradient_reference);
     const double speed_limit = p_.blowup_speed_factor * std::max(reference_speed_, p_.l0 / dt);
     for (std::size_t i = 0; i < n; ++i) {
@@ -523,10 +519,10 @@ class FluidSolver {
   double time_ = 0, last_dt_ = 0, reference_speed_ = 0;
   long long step_count_ = 0, enclosed_steps_ = 0;
   bool warned_dt_ = false;
-  // The neighbour lists' build count, and the builds the PPE matrix and the gradient correction
-  // were made from and the linear solver last solved on; the positions and kinds of the last
+  // The neighbour lists' build count, and the build from which a step last made its whole set-up
+  // (the PPE matrix, the solve, the gradient correction); the positions and kinds of the last
   // build, kept once a step has been repeated (snapshot_restored).
-  long long lists_version_ = 0, matrix_lists_ = -1, correction_lists_ = -1, solved_lists_ = -1;
+  long long lists_version_ = 0, set_up_lists_ = -1;
   bool keep_listed_state_ = false, returned_ = false, repeated_setup_ = false;
   VecArray<Dim> listed_positions_;
   std::vector<ParticleKind> listed_kinds_;
